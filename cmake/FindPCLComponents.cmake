@@ -1,0 +1,14 @@
+# pcl_holefill_find_pcl(<component>...)
+#
+# Finds PCL 1.13+ with only the given components. Debian's PCLConfig looks for
+# VTK when `io` (or `visualization`) is asked for, and Debian's VTK needs MPI
+# found first; doing that here (and in the installed package config) means no
+# user of this project ever has to know.
+macro(pcl_holefill_find_pcl)
+  set(_pcl_holefill_components ${ARGN})
+  if("io" IN_LIST _pcl_holefill_components OR "visualization" IN_LIST _pcl_holefill_components)
+    find_package(MPI QUIET COMPONENTS C)
+  endif()
+  find_package(PCL 1.13 REQUIRED COMPONENTS ${_pcl_holefill_components})
+  unset(_pcl_holefill_components)
+endmacro()

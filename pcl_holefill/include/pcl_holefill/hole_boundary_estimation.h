@@ -1,0 +1,162 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/boundary_loop.h>
+#include <pcl_holefill/point_grid.h>
+
+#include <pcl/pcl_base.h>
+#include <pcl/search/search.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_holefill
+{
+/** \brief Finds every rim of missing surface in an oriented point cloud and
+  * returns each as an ordered loop of the cloud's own indices, labelled as a
+  * hole or as the outer border of an open surface.
+  *
+  * Three steps, each bounded by the number of points:
+  *  1. a point is on a rim when its k nearest neighbours, seen in its tangent
+  *     plane, leave an empty sector wider than the angle threshold (PCL's
+  *     BoundaryEstimation test; with the given normals it does not fire along
+  *     sharp edges and corners of a solid, see largestAngularGap);
+  *  2. rim points closer than link_distance_factor x the mean spacing are
+  *     chained into loops (traceBoundaryLoops), and gaps between consecutive
+  *     loop points are closed with the paper's midpoint refinement (sec. 3.3);
+  *  3. a loop whose empty sectors face its inside is a hole; one facing
+  *     outwards is a border. A loop wider than the maximum hole diameter (if
+  *     set) is a border too.
+  *
+  * The paper's own semi-automatic mode is refineFeaturePoints(): from a few
+  * user points in order along a hole, the same midpoint refinement.
+  *
+  * Points with non-finite coordinates or a missing/zero normal are skipped
+  * (with a PCL_WARN). setIndices() restricts the search to a subset; the
+  * loops still index the input cloud.
+  */
+template <typename PointT>
+class HoleBoundaryEstimation : public pcl::PCLBase<PointT>
+{
+public:
+  using Ptr = pcl::shared_ptr<HoleBoundaryEstimation<PointT>>;
+  using ConstPtr = pcl::shared_ptr<const HoleBoundaryEstimation<PointT>>;
+  using PointCloud = pcl::PointCloud<PointT>;
+  using Search = pcl::search::Search<PointT>;
+  using SearchPtr = typename Search::Ptr;
+
+  HoleBoundaryEstimation () = default;
+
+  /** \brief A search to use for the k nearest neighbours (it is given the
+    * input cloud). By default a VoxelHashSearch is built. */
+  void
+  setSearchMethod (const SearchPtr &search) { search_ = search; }
+  SearchPtr
+  getSearchMethod () const { return search_; }
+
+  /** \brief Neighbours looked at per point (default 16, at least 3). */
+  void
+  setKSearch (int k) { k_ = k; }
+  int
+  getKSearch () const { return k_; }
+
+  /** \brief Widest empty sector (radians) a non-rim point may have (default pi/2). */
+  void
+  setAngleThreshold (float radians) { angle_threshold_ = radians; }
+  float
+  getAngleThreshold () const { return angle_threshold_; }
+
+  /** \brief Rim points closer than this many mean spacings are chained (default 3.5). */
+  void
+  setLinkDistanceFactor (float factor) { link_factor_ = factor; }
+  float
+  getLinkDistanceFactor () const { return link_factor_; }
+
+  /** \brief Loops with fewer points are ignored as noise (default 6). */
+  void
+  setMinLoopPoints (int n) { min_loop_points_ = n; }
+  int
+  getMinLoopPoints () const { return min_loop_points_; }
+
+  /** \brief Loops wider than this (cloud units) are borders, never holes; 0 (default) = no limit. */
+  void
+  setMaxHoleDiameter (float diameter) { max_hole_diameter_ = diameter; }
+  float
+  getMaxHoleDiameter () const { return max_hole_diameter_; }
+
+  /** \brief Threads for the per-point test; 0 (default) = all cores. */
+  void
+  setNumberOfThreads (unsigned int threads) { threads_ = threads; }
+  unsigned int
+  getNumberOfThreads () const { return threads_; }
+
+  /** \brief Finds all loops, holes and borders. Empty (with a message) on bad input. */
+  void
+  compute (std::vector<BoundaryLoop> &loops);
+
+  /** \brief The paper's semi-automatic boundary (sec. 3.3): \a feature_indices,
+    * in order along one rim, are densified by midpoint refinement into
+    * \a loop (marked as a hole). Returns false (with a PCL_ERROR) on bad input. */
+  bool
+  refineFeaturePoints (const pcl::Indices &feature_indices, BoundaryLoop &loop, bool closed = true);
+
+  /** \brief After compute(): per input point, 1 where the rim test fired. */
+  const std::vector<char> &
+  getBoundaryFlags () const { return flags_; }
+
+  /** \brief After compute() or refineFeaturePoints(): mean nearest-neighbour spacing. */
+  float
+  getMeanSpacing () const { return mean_spacing_; }
+
+protected:
+  using pcl::PCLBase<PointT>::input_;
+  using pcl::PCLBase<PointT>::indices_;
+  using pcl::PCLBase<PointT>::initCompute;
+  using pcl::PCLBase<PointT>::deinitCompute;
+
+private:
+  /** Validates parameters and input, builds the neighbour search over the
+    * usable points. False (after a message) when nothing can be done. */
+  bool
+  prepare (const char *caller);
+
+  /** k nearest usable points to usable point \a local (itself excluded), as local ids. */
+  void
+  nearestUsable (std::size_t local, int k, std::vector<int> &ids, std::vector<float> &sqr_distances) const;
+
+  /** Nearest usable point to a position, as a cloud index (-1 if none). */
+  int
+  nearestCloudIndex (const Eigen::Vector3f &position) const;
+
+  /** Fills length, spacing, diameter of a loop from its indices. */
+  void
+  measure (BoundaryLoop &loop) const;
+
+  SearchPtr search_;
+  int k_ = 16;
+  float angle_threshold_ = static_cast<float> (M_PI / 2.0);
+  float link_factor_ = 3.5f;
+  int min_loop_points_ = 6;
+  float max_hole_diameter_ = 0.f;
+  unsigned int threads_ = 0;
+
+  // Working state of one call.
+  pcl::IndicesPtr usable_;                //!< cloud indices of the oriented points
+  std::vector<int> local_of_;             //!< cloud index -> position in usable_, or -1
+  std::vector<Eigen::Vector3f> positions_;
+  std::vector<Eigen::Vector3f> normals_;  //!< unit
+  std::vector<float> nearest_distance_;   //!< per usable point
+  PointGrid grid_;                        //!< over positions_, when no search is set
+  std::vector<char> flags_;
+  float mean_spacing_ = 0.f;
+};
+
+}  // namespace pcl_holefill
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_holefill/impl/hole_boundary_estimation.hpp>
+#endif

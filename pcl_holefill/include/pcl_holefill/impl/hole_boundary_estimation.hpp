@@ -1,0 +1,263 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/loop_tracing.h>
+#include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/thread_count.h>
+
+#include <pcl/console/print.h>
+
+#include <cmath>
+
+namespace pcl_holefill
+{
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::prepare (const char *caller)
+{
+  positions_.clear ();
+  normals_.clear ();
+  nearest_distance_.clear ();
+  mean_spacing_ = 0.f;
+  flags_.assign (input_ ? input_->size () : 0, 0);
+  if (!input_ || input_->empty ())
+  {
+    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] The input cloud is empty: no loop.\n", caller);
+    return false;
+  }
+  if (k_ < 3 || k_ > 64 || !(angle_threshold_ > 0.f && angle_threshold_ < 2.f * M_PI) ||
+      !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
+      !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)))
+  {
+    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] Invalid parameters: k = %d (3..64), angle "
+               "threshold = %g (0..2pi), link distance factor = %g (> 0), min loop points = %d (>= 3), "
+               "max hole diameter = %g (>= 0).\n",
+               caller, k_, angle_threshold_, link_factor_, min_loop_points_, max_hole_diameter_);
+    return false;
+  }
+  if (!initCompute ())
+    return false;
+  usable_.reset (new pcl::Indices);
+  const std::size_t skipped = keepOrientedPoints (*input_, *indices_, *usable_);
+  deinitCompute ();
+  if (skipped > 0)
+    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Skipped %zu of %zu points with non-finite "
+              "coordinates or a missing normal.\n", caller, skipped, indices_->size ());
+  if (usable_->size () < static_cast<std::size_t> (k_) + 1)
+  {
+    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Only %zu usable points (need more than k = %d): "
+              "no loop.\n", caller, usable_->size (), k_);
+    return false;
+  }
+  local_of_.assign (input_->size (), -1);
+  positions_.reserve (usable_->size ());
+  normals_.reserve (usable_->size ());
+  for (std::size_t i = 0; i < usable_->size (); ++i)
+  {
+    const PointT &p = (*input_)[(*usable_)[i]];
+    local_of_[(*usable_)[i]] = static_cast<int> (i);
+    positions_.push_back (p.getVector3fMap ());
+    normals_.push_back (p.getNormalVector3fMap ().normalized ());
+  }
+  if (search_)
+    search_->setInputCloud (input_, usable_);
+  else
+  {
+    grid_.reset (PointGrid::suggestCellSize (positions_, k_));
+    for (std::size_t i = 0; i < positions_.size (); ++i)
+      grid_.insert (positions_[i], static_cast<int> (i));
+  }
+  return true;
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::nearestUsable (std::size_t local, int k, std::vector<int> &ids,
+                                               std::vector<float> &sqr_distances) const
+{
+  ids.clear ();
+  sqr_distances.clear ();
+  if (search_)
+  {
+    pcl::Indices found;
+    std::vector<float> d2;
+    search_->nearestKSearch ((*input_)[(*usable_)[local]], k + 1, found, d2);
+    for (std::size_t j = 0; j < found.size (); ++j)
+    {
+      const int id = local_of_[found[j]];
+      if (id >= 0 && id != static_cast<int> (local))
+      {
+        ids.push_back (id);
+        sqr_distances.push_back (d2[j]);
+      }
+    }
+    return;
+  }
+  thread_local std::vector<PointGrid::Neighbour> found;
+  grid_.nearestK (positions_[local], k + 1, found);
+  for (const auto &n : found)
+    if (n.id != static_cast<int> (local))
+    {
+      ids.push_back (n.id);
+      sqr_distances.push_back (n.sqr_distance);
+    }
+}
+
+template <typename PointT> int
+HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &position) const
+{
+  if (search_)
+  {
+    PointT query;
+    query.getVector3fMap () = position;
+    pcl::Indices found;
+    std::vector<float> d2;
+    return search_->nearestKSearch (query, 1, found, d2) > 0 ? found[0] : -1;
+  }
+  std::vector<PointGrid::Neighbour> found;
+  grid_.nearestK (position, 1, found);
+  return found.empty () ? -1 : (*usable_)[found[0].id];
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
+{
+  std::vector<Eigen::Vector3f> points;
+  float spacing = 0.f;
+  for (const auto i : loop.indices)
+  {
+    points.push_back ((*input_)[i].getVector3fMap ());
+    const int local = local_of_[i];
+    spacing += local >= 0 && !nearest_distance_.empty () ? nearest_distance_[local] : mean_spacing_;
+  }
+  loop.length = loopLength (points, loop.closed);
+  loop.diameter = loopDiameter (points);
+  loop.mean_spacing = loop.indices.empty () ? 0.f : spacing / static_cast<float> (loop.indices.size ());
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
+{
+  loops.clear ();
+  if (!prepare ("compute"))
+    return;
+
+  // 1. The angular-gap test on every usable point.
+  const std::size_t n = positions_.size ();
+  std::vector<char> on_rim (n, 0);
+  std::vector<Eigen::Vector3f> gap_direction (n, Eigen::Vector3f::Zero ());
+  nearest_distance_.assign (n, 0.f);
+#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 2048)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+  {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<float> d2;
+    thread_local std::vector<Eigen::Vector3f> around, around_normals;
+    nearestUsable (static_cast<std::size_t> (i), k_, ids, d2);
+    if (ids.empty ())
+      continue;
+    nearest_distance_[i] = std::sqrt (*std::min_element (d2.begin (), d2.end ()));
+    around.clear ();
+    around_normals.clear ();
+    for (const int j : ids)
+    {
+      around.push_back (positions_[j]);
+      around_normals.push_back (normals_[j]);
+    }
+    const AngularGap gap = largestAngularGap (positions_[i], normals_[i], around, around_normals);
+    if (gap.angle > angle_threshold_)
+    {
+      on_rim[i] = 1;
+      gap_direction[i] = gap.direction;
+    }
+  }
+  double sum = 0.0;
+  for (const float d : nearest_distance_)
+    sum += d;
+  mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
+
+  // 2. Chain the rim points into loops.
+  std::vector<int> rim;
+  std::vector<Eigen::Vector3f> rim_positions, rim_normals, rim_gaps;
+  for (std::size_t i = 0; i < n; ++i)
+    if (on_rim[i])
+    {
+      flags_[(*usable_)[i]] = 1;
+      rim.push_back (static_cast<int> (i));
+      rim_positions.push_back (positions_[i]);
+      rim_normals.push_back (normals_[i]);
+      rim_gaps.push_back (gap_direction[i]);
+    }
+  const auto traced = traceBoundaryLoops (rim_positions, rim_normals, rim_gaps,
+                                          link_factor_ * mean_spacing_, min_loop_points_);
+
+  // 3. Close the gaps along each loop, measure it, tell a hole from a border.
+  for (const auto &t : traced)
+  {
+    BoundaryLoop loop;
+    loop.closed = t.closed;
+    pcl::Indices coarse;
+    for (const int m : t.members)
+      coarse.push_back ((*usable_)[rim[m]]);
+    loop.indices = refineByMidpoints (
+        coarse, t.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
+        [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, 4 * coarse.size () + 64);
+    std::vector<Eigen::Vector3f> loop_positions, loop_gaps;
+    for (const int m : t.members)
+    {
+      loop_positions.push_back (rim_positions[m]);
+      loop_gaps.push_back (rim_gaps[m]);
+    }
+    measure (loop);
+    loop.is_hole = loop.closed && gapsPointInside (loop_positions, loop_gaps) &&
+                   (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
+    loops.push_back (std::move (loop));
+  }
+}
+
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature_indices, BoundaryLoop &loop,
+                                                     bool closed)
+{
+  loop = BoundaryLoop ();
+  if (!prepare ("refineFeaturePoints"))
+    return false;
+  if (feature_indices.size () < 2)
+  {
+    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::refineFeaturePoints] Need at least 2 feature "
+               "points, got %zu.\n", feature_indices.size ());
+    return false;
+  }
+  for (const auto i : feature_indices)
+    if (i < 0 || static_cast<std::size_t> (i) >= input_->size () || local_of_[i] < 0)
+    {
+      PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::refineFeaturePoints] Feature point %d is out of "
+                 "range or not an oriented point.\n", static_cast<int> (i));
+      return false;
+    }
+  double sum = 0.0;
+  nearest_distance_.assign (positions_.size (), 0.f);
+  std::vector<int> ids;
+  std::vector<float> d2;
+  for (const auto i : feature_indices)
+  {
+    nearestUsable (local_of_[i], 1, ids, d2);
+    nearest_distance_[local_of_[i]] = d2.empty () ? 0.f : std::sqrt (d2[0]);
+    sum += nearest_distance_[local_of_[i]];
+  }
+  mean_spacing_ = static_cast<float> (sum / feature_indices.size ());
+  loop.closed = closed;
+  loop.is_hole = true;
+  loop.indices = refineByMidpoints (
+      feature_indices, closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
+      [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, input_->size ());
+  measure (loop);
+  return true;
+}
+
+}  // namespace pcl_holefill
+
+#define PCL_INSTANTIATE_HoleBoundaryEstimation(T) template class pcl_holefill::HoleBoundaryEstimation<T>;

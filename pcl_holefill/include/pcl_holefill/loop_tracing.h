@@ -1,0 +1,64 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace pcl_holefill
+{
+/** \brief The boundary points of one connected rim, in walking order. */
+struct TracedLoop
+{
+  std::vector<int> members;  //!< indices into the arrays given to traceBoundaryLoops
+  bool closed = false;
+};
+
+/** \brief Chains flagged boundary points into ordered loops.
+  *
+  * Points closer than \a link_distance are linked; each connected set is
+  * walked along its tangent (normal x gap direction, so the missing surface
+  * stays on one side), always to the nearest unvisited point ahead. Points a
+  * row behind the walk are absorbed, so a rim two points deep gives one loop;
+  * a gap shorter than \a link_distance is jumped; spurs, which the walk never
+  * needs, are left out. Sets with fewer than \a min_points are dropped.
+  * Every loop runs a bounded number of steps (the size of its set). */
+std::vector<TracedLoop>
+traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
+                    const std::vector<Eigen::Vector3f> &normals,
+                    const std::vector<Eigen::Vector3f> &gap_directions, float link_distance,
+                    int min_points);
+
+/** \brief The paper's section 3.3: between consecutive \a feature points
+  * (indices of a cloud), recursively insert the cloud point nearest to each
+  * segment's midpoint until no new point appears. At most \a max_points in
+  * the result. \a position_of maps an index to its position and
+  * \a nearest_index a position to the nearest cloud index (or -1). */
+std::vector<int>
+refineByMidpoints (const std::vector<int> &features, bool closed,
+                   const std::function<Eigen::Vector3f (int)> &position_of,
+                   const std::function<int (const Eigen::Vector3f &)> &nearest_index,
+                   std::size_t max_points);
+
+/** \brief True when the missing surface lies inside the loop (a hole), false
+  * when it lies outside (the outer border of an open surface): the gap
+  * directions point towards the loop's centroid for a hole, away from it for
+  * a border. */
+bool
+gapsPointInside (const std::vector<Eigen::Vector3f> &loop_positions,
+                 const std::vector<Eigen::Vector3f> &loop_gap_directions);
+
+/** \brief Largest distance between two loop points (exact up to 2000 points,
+  * on an even subsample beyond). */
+float
+loopDiameter (const std::vector<Eigen::Vector3f> &loop_positions);
+
+/** \brief Length of the polyline, closed or not. */
+float
+loopLength (const std::vector<Eigen::Vector3f> &loop_positions, bool closed);
+
+}  // namespace pcl_holefill

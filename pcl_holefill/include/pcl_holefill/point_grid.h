@@ -1,0 +1,113 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_holefill
+{
+/** \brief A uniform hash grid over 3D points that supports exact k-nearest and
+  * radius queries and cheap insertion of new points.
+  *
+  * Why not a kd-tree: points sampled on a surface fill a hash grid evenly, so a
+  * query touches a few dozen contiguous entries, and new points (the filler
+  * adds some every pass) go in without a rebuild. Each cell stores the
+  * coordinates next to the ids, so a query reads memory in order.
+  *
+  * The grid is not thread-safe for insertion; concurrent queries are fine.
+  */
+class PointGrid
+{
+public:
+  /** \brief One neighbour: its id (as given to insert()) and squared distance. */
+  struct Neighbour
+  {
+    int id;
+    float sqr_distance;
+  };
+
+  /** \brief An empty grid with cells of edge \a cell_size (must be > 0). */
+  explicit PointGrid (float cell_size = 1.0f);
+
+  /** \brief Removes every point and sets a new cell size (> 0). */
+  void
+  reset (float cell_size);
+
+  /** \brief Adds one point with the caller's id. Non-finite points are ignored. */
+  void
+  insert (const Eigen::Vector3f &position, int id);
+
+  /** \brief The \a k nearest points to \a query, nearest first (fewer if the
+    * grid holds fewer than \a k points). Exact. */
+  void
+  nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour> &result) const;
+
+  /** \brief All points within \a radius of \a query, unordered; at most
+    * \a max_results of them when that is > 0 (then the nearest are kept). */
+  void
+  withinRadius (const Eigen::Vector3f &query, float radius, std::vector<Neighbour> &result,
+                std::size_t max_results = 0) const;
+
+  /** \brief Number of points stored. */
+  std::size_t
+  size () const { return size_; }
+
+  float
+  cellSize () const { return cell_size_; }
+
+  /** \brief A cell size at which a cell block of 3x3x3 holds about \a k
+    * neighbours of a point sampled on a surface, estimated from the points
+    * themselves (occupied cells of a coarse grid give the surface area).
+    * Returns 0 when no finite point is given. */
+  static float
+  suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k);
+
+private:
+  struct Entry
+  {
+    float x, y, z;
+    int id;
+  };
+
+  using CellKey = std::uint64_t;
+
+  CellKey
+  keyOf (int ix, int iy, int iz) const;
+
+  void
+  cellCoordinates (const Eigen::Vector3f &p, int &ix, int &iy, int &iz) const;
+
+  /** The slot of the cell with this key, or -1. */
+  int
+  findCell (CellKey key) const;
+
+  /** The slot of the cell with this key, created if needed. */
+  int
+  findOrAddCell (CellKey key);
+
+  void
+  rehash (std::size_t capacity);
+
+  /** Visits the cells of the shell at Chebyshev distance \a ring around
+    * (cx, cy, cz) and collects the points within sqrt(max_sqr) of query. */
+  void
+  collectShell (int cx, int cy, int cz, int ring, const Eigen::Vector3f &query, float max_sqr,
+                std::vector<Neighbour> &out) const;
+
+  float cell_size_;
+  float inverse_cell_size_;
+  std::size_t size_ = 0;
+  int min_cell_[3] = {0, 0, 0};
+  int max_cell_[3] = {0, 0, 0};
+  // Open addressing: table_keys_[slot] holds a key or kEmpty; table_cells_[slot] the cell.
+  std::vector<CellKey> table_keys_;
+  std::vector<int> table_cells_;
+  std::vector<std::vector<Entry>> cells_;
+};
+
+}  // namespace pcl_holefill

@@ -1,0 +1,38 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/point_cloud.h>
+#include <pcl/types.h>
+
+#include <cmath>
+
+namespace pcl_holefill
+{
+/** \brief True for a point with finite coordinates and a finite normal that is
+  * not (nearly) zero: the only points the method can use. */
+template <typename PointT> inline bool
+isOrientedPoint (const PointT &p)
+{
+  if (!std::isfinite (p.x) || !std::isfinite (p.y) || !std::isfinite (p.z))
+    return false;
+  const float n2 = p.normal_x * p.normal_x + p.normal_y * p.normal_y + p.normal_z * p.normal_z;
+  return std::isfinite (n2) && n2 > 1e-12f;
+}
+
+/** \brief The entries of \a indices that are oriented points; returns how
+  * many were skipped. */
+template <typename PointT> inline std::size_t
+keepOrientedPoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices, pcl::Indices &kept)
+{
+  kept.clear ();
+  kept.reserve (indices.size ());
+  for (const auto i : indices)
+    if (isOrientedPoint (cloud[i]))
+      kept.push_back (i);
+  return indices.size () - kept.size ();
+}
+
+}  // namespace pcl_holefill

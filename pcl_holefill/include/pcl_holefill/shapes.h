@@ -1,0 +1,87 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+/** \brief Synthetic models with exact normals and an exact distance to their
+  * surface: the paper's test shapes (section 5), shared by the tests, the
+  * benchmark and the demo. All fit the unit cube [0,1]^3 and are sampled with
+  * a fixed seed, so every run sees the same cloud. */
+namespace pcl_holefill
+{
+namespace shapes
+{
+using Cloud = pcl::PointCloud<pcl::PointNormal>;
+
+/** \brief A convex planar polygon, counter-clockwise seen from its outward normal. */
+struct Face
+{
+  std::vector<Eigen::Vector3d> corners;
+};
+
+/** \brief A surface made of planar faces, or a sphere when radius > 0. */
+struct Shape
+{
+  std::string name;
+  std::vector<Face> faces;
+  Eigen::Vector3d centre = Eigen::Vector3d::Constant (0.5);
+  double radius = 0.0;
+  bool closed = false;
+
+  /** \brief Distance from \a p to the true surface. */
+  double
+  distance (const Eigen::Vector3d &p) const;
+
+  /** \brief About \a points samples, evenly spread (a jittered grid on each
+    * face, a jittered Fibonacci lattice on the sphere), exact outward normals. */
+  Cloud
+  sample (std::size_t points, unsigned seed = 1) const;
+
+  double
+  area () const;
+};
+
+Shape sphere ();               //!< centre (0.5,0.5,0.5), radius 0.5
+Shape cube ();                 //!< the closed unit cube
+Shape openPyramid ();          //!< square base [0,1]^2 at z=0 (open), apex (0.5,0.5,1)
+Shape dihedral ();             //!< two planes meeting at a 90 degree ridge along x, open
+Shape flatPatch ();            //!< the square [0,1]^2 at z = 0.5, open
+
+/** \brief A ball to cut out of a cloud. */
+struct Ball
+{
+  Eigen::Vector3d centre;
+  double radius;
+};
+
+/** \brief A cloud with holes and what was cut out of it (the ground truth of
+  * what each hole should contain). */
+struct CutCloud
+{
+  Cloud kept;
+  Cloud removed;
+};
+
+/** \brief Removes every sample inside any of \a balls. */
+CutCloud
+cutHoles (const Cloud &cloud, const std::vector<Ball> &balls);
+
+/** \brief Moves every point along its normal by Gaussian noise of std \a sigma. */
+void
+addNormalNoise (Cloud &cloud, double sigma, unsigned seed = 7);
+
+/** \brief Mean distance from each point to its nearest neighbour. */
+double
+meanSpacing (const Cloud &cloud);
+
+}  // namespace shapes
+}  // namespace pcl_holefill

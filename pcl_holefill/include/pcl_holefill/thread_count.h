@@ -1,0 +1,21 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <thread>
+
+namespace pcl_holefill
+{
+/** \brief PCL's meaning of a thread count: 0 is every core. */
+inline int
+resolveThreadCount (unsigned int requested)
+{
+  if (requested > 0)
+    return static_cast<int> (requested);
+  const unsigned int cores = std::thread::hardware_concurrency ();
+  return cores > 0 ? static_cast<int> (cores) : 1;
+}
+
+}  // namespace pcl_holefill

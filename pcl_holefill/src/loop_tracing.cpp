@@ -1,0 +1,279 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/loop_tracing.h>
+#include <pcl_holefill/point_grid.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace pcl_holefill
+{
+namespace
+{
+/** Connected sets of points under "closer than link". */
+std::vector<std::vector<int>>
+linkedSets (const PointGrid &grid, const std::vector<Eigen::Vector3f> &positions, float link)
+{
+  std::vector<int> label (positions.size (), -1);
+  std::vector<std::vector<int>> sets;
+  std::vector<PointGrid::Neighbour> near;
+  for (std::size_t seed = 0; seed < positions.size (); ++seed)
+  {
+    if (label[seed] >= 0)
+      continue;
+    const int id = static_cast<int> (sets.size ());
+    sets.emplace_back ();
+    std::vector<int> stack{static_cast<int> (seed)};
+    label[seed] = id;
+    while (!stack.empty ())  // each point is pushed once: bounded
+    {
+      const int p = stack.back ();
+      stack.pop_back ();
+      sets[id].push_back (p);
+      grid.withinRadius (positions[p], link, near);
+      for (const auto &q : near)
+        if (label[q.id] < 0)
+        {
+          label[q.id] = id;
+          stack.push_back (q.id);
+        }
+    }
+  }
+  return sets;
+}
+
+std::vector<Eigen::Vector3f>
+pathPositions (const std::vector<int> &path, const std::vector<Eigen::Vector3f> &positions)
+{
+  std::vector<Eigen::Vector3f> out;
+  for (const int i : path)
+    out.push_back (positions[i]);
+  return out;
+}
+
+/** Walks one linked set from \a start. Returns the ordered path. */
+std::vector<int>
+walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
+      const std::vector<Eigen::Vector3f> &normals, const std::vector<Eigen::Vector3f> &tangents,
+      const std::vector<Eigen::Vector3f> &gap_directions, const PointGrid &grid, float link,
+      std::vector<char> &visited, bool &closed)
+{
+  std::vector<int> path{start};
+  visited[start] = 1;
+  closed = false;
+  std::vector<PointGrid::Neighbour> near;
+  Eigen::Vector3f heading = sense * tangents[start];
+  int current = start;
+  float travelled = 0.f;
+  const std::size_t bound = positions.size ();
+  for (std::size_t step = 0; step < bound; ++step)
+  {
+    grid.withinRadius (positions[current], link, near);
+    std::sort (near.begin (), near.end (), [] (const auto &a, const auto &b) {
+      return a.sqr_distance < b.sqr_distance || (a.sqr_distance == b.sqr_distance && a.id < b.id);
+    });
+    // Back home, once the walk has gone well away from it?
+    const float home = (positions[start] - positions[current]).norm ();
+    if (travelled > 2.f * link && home <= link)
+    {
+      closed = true;
+      break;
+    }
+    // The next point: near and ahead of the walk, seen flattened (a rim that
+    // turns over a sharp edge still lies ahead), allowed to turn up to a bit
+    // past a right angle (corners of a border), and with its rim running the
+    // same way, so the walk never jumps to the facing side of a narrow hole.
+    int next = -1;
+    float best_score = std::numeric_limits<float>::max ();
+    for (const auto &q : near)
+    {
+      if (visited[q.id] || q.id == current)
+        continue;
+      const Eigen::Vector3f d =
+          unfoldIntoTangentPlane (positions[q.id] - positions[current], normals[current], normals[q.id]);
+      const float len = d.norm ();
+      if (!(len > 0.f) || sense * tangents[q.id].dot (heading) <= -0.5f)
+        continue;
+      const float cosine = d.dot (heading) / len;
+      // Of two rows of rim points, keep to the outer one (towards the gap).
+      const float score = len * (1.5f - cosine) - 0.5f * d.dot (gap_directions[current]);
+      if (cosine > -0.2f && score < best_score)
+      {
+        best_score = score;
+        next = q.id;
+      }
+    }
+    if (next < 0)
+    {
+      // Stuck next to home, its last neighbours absorbed: that closes too.
+      closed = travelled > 2.f * link && home <= 2.f * link;
+      break;
+    }
+    // Absorb the points beside or behind the step: a second row of the rim.
+    const Eigen::Vector3f step_dir = (positions[next] - positions[current]).normalized ();
+    for (const auto &q : near)
+      if (!visited[q.id] && (positions[q.id] - positions[current]).dot (step_dir) <= 0.5f * std::sqrt (q.sqr_distance) &&
+          q.sqr_distance <= 0.25f * link * link)
+        visited[q.id] = 1;
+    visited[next] = 1;
+    travelled += (positions[next] - positions[current]).norm ();
+    path.push_back (next);
+    // The heading follows the rim, smoothed so that one jagged step cannot
+    // turn it, and is laid into the new point's tangent plane (edges).
+    Eigen::Vector3f blended = heading + (sense * tangents[next] + step_dir).normalized ();
+    blended -= blended.dot (normals[next]) * normals[next];
+    heading = blended.norm () > 1e-6f ? blended.normalized () : Eigen::Vector3f (sense * tangents[next]);
+    current = next;
+  }
+  return path;
+}
+}  // namespace
+
+std::vector<TracedLoop>
+traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
+                    const std::vector<Eigen::Vector3f> &normals,
+                    const std::vector<Eigen::Vector3f> &gap_directions, float link_distance,
+                    int min_points)
+{
+  std::vector<TracedLoop> loops;
+  if (positions.empty () || !(link_distance > 0.f))
+    return loops;
+  PointGrid grid (link_distance);
+  std::vector<Eigen::Vector3f> tangents (positions.size ());
+  for (std::size_t i = 0; i < positions.size (); ++i)
+  {
+    grid.insert (positions[i], static_cast<int> (i));
+    // Walking along n x g keeps the missing surface on the right-hand side.
+    tangents[i] = normals[i].cross (gap_directions[i]).normalized ();
+  }
+  std::vector<char> visited (positions.size (), 0);
+  for (const auto &set : linkedSets (grid, positions, link_distance))
+  {
+    if (static_cast<int> (set.size ()) < min_points)
+      continue;
+    // Walks may leave points of a wide rim unvisited: start again from those
+    // still far from any walked point, a bounded number of times.
+    for (std::size_t attempt = 0; attempt < set.size (); ++attempt)
+    {
+      const auto fresh = std::find_if (set.begin (), set.end (), [&] (int p) { return !visited[p]; });
+      if (fresh == set.end ())
+        break;
+      bool closed = false;
+      std::vector<int> forward = walk (*fresh, 1.f, positions, normals, tangents, gap_directions, grid, link_distance, visited, closed);
+      if (!closed)
+      {
+        // An open rim: the start may be mid-way, so extend backwards too.
+        bool ignored = false;
+        std::vector<int> backward = walk (*fresh, -1.f, positions, normals, tangents, gap_directions, grid, link_distance, visited, ignored);
+        std::reverse (backward.begin (), backward.end ());
+        backward.pop_back ();  // the start, already in forward
+        backward.insert (backward.end (), forward.begin (), forward.end ());
+        forward.swap (backward);
+        // Both walks went round and met: a loop after all (a sharp corner stopped one).
+        closed = forward.size () > 4 && loopLength (pathPositions (forward, positions), false) > 3.f * link_distance &&
+                 (positions[forward.front ()] - positions[forward.back ()]).norm () <= link_distance;
+      }
+      if (static_cast<int> (forward.size ()) >= min_points)
+        loops.push_back ({forward, closed});
+    }
+  }
+  return loops;
+}
+
+std::vector<int>
+refineByMidpoints (const std::vector<int> &features, bool closed,
+                   const std::function<Eigen::Vector3f (int)> &position_of,
+                   const std::function<int (const Eigen::Vector3f &)> &nearest_index,
+                   std::size_t max_points)
+{
+  std::vector<int> result;
+  if (features.empty ())
+    return result;
+  std::set<int> used (features.begin (), features.end ());
+  const std::size_t segments = closed ? features.size () : features.size () - 1;
+  result.push_back (features[0]);
+  for (std::size_t s = 0; s < segments; ++s)
+  {
+    const int a = features[s];
+    const int b = features[(s + 1) % features.size ()];
+    // Depth-first over sub-segments, left half first, so insertions come out in order.
+    std::vector<std::pair<int, int>> stack{{a, b}};
+    std::vector<int> piece;
+    while (!stack.empty () && used.size () < max_points)
+    {
+      const auto [from, to] = stack.back ();
+      stack.pop_back ();
+      if (from < 0)  // a marker: emit the point 'to'
+      {
+        piece.push_back (to);
+        continue;
+      }
+      const int m = nearest_index (0.5f * (position_of (from) + position_of (to)));
+      if (m < 0 || used.count (m))
+        continue;
+      used.insert (m);
+      // Process (from, m), then emit m, then (m, to).
+      stack.push_back ({m, to});
+      stack.push_back ({-1, m});
+      stack.push_back ({from, m});
+    }
+    result.insert (result.end (), piece.begin (), piece.end ());
+    if (closed && s + 1 == segments)
+      break;  // b is features[0], already first
+    result.push_back (b);
+  }
+  return result;
+}
+
+bool
+gapsPointInside (const std::vector<Eigen::Vector3f> &loop_positions,
+                 const std::vector<Eigen::Vector3f> &loop_gap_directions)
+{
+  if (loop_positions.empty ())
+    return false;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  for (const auto &p : loop_positions)
+    centroid += p;
+  centroid /= static_cast<float> (loop_positions.size ());
+  float vote = 0.f;
+  for (std::size_t i = 0; i < loop_positions.size (); ++i)
+  {
+    const Eigen::Vector3f to_centre = centroid - loop_positions[i];
+    const float len = to_centre.norm ();
+    if (len > 0.f)
+      vote += loop_gap_directions[i].dot (to_centre / len);
+  }
+  return vote >= 0.f;
+}
+
+float
+loopDiameter (const std::vector<Eigen::Vector3f> &loop_positions)
+{
+  const std::size_t n = loop_positions.size ();
+  const std::size_t stride = std::max<std::size_t> (1, n / 2000);
+  float best = 0.f;
+  for (std::size_t i = 0; i < n; i += stride)
+    for (std::size_t j = i + stride; j < n; j += stride)
+      best = std::max (best, (loop_positions[i] - loop_positions[j]).squaredNorm ());
+  return std::sqrt (best);
+}
+
+float
+loopLength (const std::vector<Eigen::Vector3f> &loop_positions, bool closed)
+{
+  float length = 0.f;
+  for (std::size_t i = 1; i < loop_positions.size (); ++i)
+    length += (loop_positions[i] - loop_positions[i - 1]).norm ();
+  if (closed && loop_positions.size () > 2)
+    length += (loop_positions.front () - loop_positions.back ()).norm ();
+  return length;
+}
+
+}  // namespace pcl_holefill

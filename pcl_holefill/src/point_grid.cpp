@@ -1,0 +1,288 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/point_grid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pcl_holefill
+{
+namespace
+{
+constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max ();
+// Cell coordinates are packed in 21 bits each, offset so negatives fit.
+constexpr int kCoordinateBias = 1 << 20;
+constexpr int kCoordinateLimit = (1 << 20) - 1;
+// Past this many rings a kNN query scans every cell instead (isolated points).
+constexpr int kMaxRings = 6;
+
+std::uint64_t
+mix (std::uint64_t key)
+{
+  // splitmix64 finaliser: spreads neighbouring cells over the table.
+  key ^= key >> 30;
+  key *= 0xbf58476d1ce4e5b9ULL;
+  key ^= key >> 27;
+  key *= 0x94d049bb133111ebULL;
+  key ^= key >> 31;
+  return key;
+}
+
+bool
+lessByDistance (const PointGrid::Neighbour &a, const PointGrid::Neighbour &b)
+{
+  return a.sqr_distance < b.sqr_distance || (a.sqr_distance == b.sqr_distance && a.id < b.id);
+}
+
+void
+keepNearest (std::vector<PointGrid::Neighbour> &neighbours, std::size_t count)
+{
+  if (neighbours.size () > count)
+  {
+    std::nth_element (neighbours.begin (), neighbours.begin () + count, neighbours.end (),
+                      lessByDistance);
+    neighbours.resize (count);
+  }
+  std::sort (neighbours.begin (), neighbours.end (), lessByDistance);
+}
+}  // namespace
+
+PointGrid::PointGrid (float cell_size) { reset (cell_size); }
+
+void
+PointGrid::reset (float cell_size)
+{
+  cell_size_ = (std::isfinite (cell_size) && cell_size > 0.f) ? cell_size : 1.f;
+  inverse_cell_size_ = 1.f / cell_size_;
+  size_ = 0;
+  cells_.clear ();
+  table_keys_.assign (64, kEmpty);
+  table_cells_.assign (64, -1);
+  for (int d = 0; d < 3; ++d)
+  {
+    min_cell_[d] = std::numeric_limits<int>::max ();
+    max_cell_[d] = std::numeric_limits<int>::min ();
+  }
+}
+
+void
+PointGrid::cellCoordinates (const Eigen::Vector3f &p, int &ix, int &iy, int &iz) const
+{
+  auto cell = [this] (float v) {
+    const float c = std::floor (v * inverse_cell_size_);
+    return static_cast<int> (std::max (-static_cast<float> (kCoordinateLimit),
+                                       std::min (static_cast<float> (kCoordinateLimit), c)));
+  };
+  ix = cell (p.x ());
+  iy = cell (p.y ());
+  iz = cell (p.z ());
+}
+
+PointGrid::CellKey
+PointGrid::keyOf (int ix, int iy, int iz) const
+{
+  const auto pack = [] (int v) { return static_cast<std::uint64_t> (v + kCoordinateBias) & 0x1FFFFFULL; };
+  return (pack (ix) << 42) | (pack (iy) << 21) | pack (iz);
+}
+
+int
+PointGrid::findCell (CellKey key) const
+{
+  const std::size_t mask = table_keys_.size () - 1;
+  for (std::size_t slot = mix (key) & mask, probes = 0; probes <= mask; slot = (slot + 1) & mask, ++probes)
+  {
+    if (table_keys_[slot] == key)
+      return table_cells_[slot];
+    if (table_keys_[slot] == kEmpty)
+      return -1;
+  }
+  return -1;
+}
+
+int
+PointGrid::findOrAddCell (CellKey key)
+{
+  if ((cells_.size () + 1) * 2 > table_keys_.size ())
+    rehash (table_keys_.size () * 2);
+  const std::size_t mask = table_keys_.size () - 1;
+  std::size_t slot = mix (key) & mask;
+  while (table_keys_[slot] != kEmpty && table_keys_[slot] != key)
+    slot = (slot + 1) & mask;  // the table is at most half full: this ends
+  if (table_keys_[slot] == kEmpty)
+  {
+    table_keys_[slot] = key;
+    table_cells_[slot] = static_cast<int> (cells_.size ());
+    cells_.emplace_back ();
+  }
+  return table_cells_[slot];
+}
+
+void
+PointGrid::rehash (std::size_t capacity)
+{
+  std::vector<CellKey> old_keys (capacity, kEmpty);
+  std::vector<int> old_cells (capacity, -1);
+  old_keys.swap (table_keys_);
+  old_cells.swap (table_cells_);
+  const std::size_t mask = capacity - 1;
+  for (std::size_t i = 0; i < old_keys.size (); ++i)
+  {
+    if (old_keys[i] == kEmpty)
+      continue;
+    std::size_t slot = mix (old_keys[i]) & mask;
+    while (table_keys_[slot] != kEmpty)
+      slot = (slot + 1) & mask;
+    table_keys_[slot] = old_keys[i];
+    table_cells_[slot] = old_cells[i];
+  }
+}
+
+void
+PointGrid::insert (const Eigen::Vector3f &position, int id)
+{
+  if (!position.allFinite ())
+    return;
+  int c[3];
+  cellCoordinates (position, c[0], c[1], c[2]);
+  for (int d = 0; d < 3; ++d)
+  {
+    min_cell_[d] = std::min (min_cell_[d], c[d]);
+    max_cell_[d] = std::max (max_cell_[d], c[d]);
+  }
+  cells_[findOrAddCell (keyOf (c[0], c[1], c[2]))].push_back ({position.x (), position.y (), position.z (), id});
+  ++size_;
+}
+
+void
+PointGrid::collectShell (int cx, int cy, int cz, int ring, const Eigen::Vector3f &query,
+                         float max_sqr, std::vector<Neighbour> &out) const
+{
+  // Clip the shell to the occupied range: cells outside it are empty.
+  const int lo[3] = {std::max (cx - ring, min_cell_[0]), std::max (cy - ring, min_cell_[1]),
+                     std::max (cz - ring, min_cell_[2])};
+  const int hi[3] = {std::min (cx + ring, max_cell_[0]), std::min (cy + ring, max_cell_[1]),
+                     std::min (cz + ring, max_cell_[2])};
+  for (int ix = lo[0]; ix <= hi[0]; ++ix)
+    for (int iy = lo[1]; iy <= hi[1]; ++iy)
+    {
+      const bool on_xy_face = std::abs (ix - cx) == ring || std::abs (iy - cy) == ring;
+      // Inside the shell's x/y faces only the two z caps belong to this ring.
+      const int step = on_xy_face ? 1 : std::max (1, 2 * ring);
+      for (int iz = on_xy_face ? lo[2] : cz - ring; iz <= hi[2]; iz += step)
+      {
+        if (iz < lo[2])
+          continue;
+        const int cell = findCell (keyOf (ix, iy, iz));
+        if (cell < 0)
+          continue;
+        for (const Entry &e : cells_[cell])
+        {
+          const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
+          const float d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 <= max_sqr)
+            out.push_back ({e.id, d2});
+        }
+      }
+    }
+}
+
+void
+PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour> &result) const
+{
+  result.clear ();
+  if (k <= 0 || size_ == 0 || !query.allFinite ())
+    return;
+  int cx, cy, cz;
+  cellCoordinates (query, cx, cy, cz);
+  const float inf = std::numeric_limits<float>::infinity ();
+  for (int ring = 0; ring <= kMaxRings; ++ring)
+  {
+    collectShell (cx, cy, cz, ring, query, inf, result);
+    if (static_cast<int> (result.size ()) >= k)
+    {
+      // Every point within ring * cell of the query has been seen.
+      std::nth_element (result.begin (), result.begin () + (k - 1), result.end (), lessByDistance);
+      const float reach = ring * cell_size_;
+      if (result[k - 1].sqr_distance <= reach * reach)
+      {
+        keepNearest (result, static_cast<std::size_t> (k));
+        return;
+      }
+    }
+  }
+  // Isolated query: scan everything once (bounded by the grid's size).
+  result.clear ();
+  for (const auto &cell : cells_)
+    for (const Entry &e : cell)
+    {
+      const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
+      result.push_back ({e.id, dx * dx + dy * dy + dz * dz});
+    }
+  keepNearest (result, static_cast<std::size_t> (k));
+}
+
+void
+PointGrid::withinRadius (const Eigen::Vector3f &query, float radius, std::vector<Neighbour> &result,
+                         std::size_t max_results) const
+{
+  result.clear ();
+  if (!(radius > 0.f) || size_ == 0 || !query.allFinite ())
+    return;
+  int cx, cy, cz;
+  cellCoordinates (query, cx, cy, cz);
+  const float sqr = radius * radius;
+  const int rings = static_cast<int> (std::ceil (radius * inverse_cell_size_));
+  int span = 0;
+  for (int d = 0; d < 3; ++d)
+    span = std::max (span, max_cell_[d] - min_cell_[d] + 1);
+  for (int ring = 0; ring <= std::min (rings, span + 1); ++ring)
+    collectShell (cx, cy, cz, ring, query, sqr, result);
+  if (max_results > 0)
+    keepNearest (result, max_results);
+}
+
+float
+PointGrid::suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k)
+{
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant (std::numeric_limits<float>::max ());
+  Eigen::Vector3f hi = -lo;
+  std::size_t finite = 0;
+  for (const auto &p : points)
+    if (p.allFinite ())
+    {
+      lo = lo.cwiseMin (p);
+      hi = hi.cwiseMax (p);
+      ++finite;
+    }
+  if (finite == 0)
+    return 0.f;
+  const float diagonal = (hi - lo).norm ();
+  if (finite < 2 || !(diagonal > 0.f))
+    return 1.f;
+  // A coarse grid with about 32 points a cell if the cloud were a square
+  // sheet; its occupied cells measure the surface area.
+  const float coarse = diagonal / std::sqrt (static_cast<float> (finite) / 32.f);
+  PointGrid probe (coarse);
+  std::vector<char> seen;
+  std::size_t occupied = 0;
+  for (const auto &p : points)
+    if (p.allFinite ())
+    {
+      int ix, iy, iz;
+      probe.cellCoordinates (p, ix, iy, iz);
+      const std::size_t before = probe.cells_.size ();
+      probe.findOrAddCell (probe.keyOf (ix, iy, iz));
+      occupied += probe.cells_.size () - before;
+    }
+  const float area = static_cast<float> (occupied) * coarse * coarse;
+  const float density = static_cast<float> (finite) / std::max (area, 1e-30f);
+  // A disc of radius cell holds pi * cell^2 * density points: ask for 2k so
+  // that the k nearest are inside the first ring most of the time.
+  const float cell = std::sqrt (2.f * std::max (k, 1) / (3.14159265f * density));
+  return std::isfinite (cell) && cell > 0.f ? cell : diagonal;
+}
+
+}  // namespace pcl_holefill

@@ -1,0 +1,291 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/shapes.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace pcl_holefill
+{
+namespace shapes
+{
+namespace
+{
+Eigen::Vector3d
+faceNormal (const Face &f)
+{
+  Eigen::Vector3d n = Eigen::Vector3d::Zero ();
+  for (std::size_t i = 0; i < f.corners.size (); ++i)
+    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
+  return n.normalized ();
+}
+
+double
+faceArea (const Face &f)
+{
+  Eigen::Vector3d n = Eigen::Vector3d::Zero ();
+  for (std::size_t i = 0; i < f.corners.size (); ++i)
+    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
+  return 0.5 * n.norm ();
+}
+
+double
+segmentDistance (const Eigen::Vector3d &p, const Eigen::Vector3d &a, const Eigen::Vector3d &b)
+{
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp ((p - a).dot (ab) / ab.squaredNorm (), 0.0, 1.0);
+  return (a + t * ab - p).norm ();
+}
+
+/** Inside test on the face's plane: p is left of every edge (counter-clockwise). */
+bool
+projectsInside (const Face &f, const Eigen::Vector3d &normal, const Eigen::Vector3d &p)
+{
+  for (std::size_t i = 0; i < f.corners.size (); ++i)
+  {
+    const Eigen::Vector3d &a = f.corners[i];
+    const Eigen::Vector3d &b = f.corners[(i + 1) % f.corners.size ()];
+    if ((b - a).cross (p - a).dot (normal) < 0.0)
+      return false;
+  }
+  return true;
+}
+
+double
+faceDistance (const Face &f, const Eigen::Vector3d &p)
+{
+  const Eigen::Vector3d n = faceNormal (f);
+  const double height = (p - f.corners[0]).dot (n);
+  if (projectsInside (f, n, p - height * n))
+    return std::abs (height);
+  double best = std::numeric_limits<double>::max ();
+  for (std::size_t i = 0; i < f.corners.size (); ++i)
+    best = std::min (best, segmentDistance (p, f.corners[i], f.corners[(i + 1) % f.corners.size ()]));
+  return best;
+}
+
+pcl::PointNormal
+makePoint (const Eigen::Vector3d &p, const Eigen::Vector3d &n)
+{
+  pcl::PointNormal q;
+  q.getVector3fMap () = p.cast<float> ();
+  q.getNormalVector3fMap () = n.cast<float> ();
+  q.curvature = 0.f;
+  return q;
+}
+
+/** A jittered grid of pitch \a spacing over the face, clipped to it. */
+void
+sampleFace (const Face &f, double spacing, std::mt19937 &rng, Cloud &out)
+{
+  const Eigen::Vector3d n = faceNormal (f);
+  const Eigen::Vector3d u = (f.corners[1] - f.corners[0]).normalized ();
+  const Eigen::Vector3d v = n.cross (u);
+  double lo_u = std::numeric_limits<double>::max (), hi_u = -lo_u, lo_v = lo_u, hi_v = -lo_u;
+  for (const auto &c : f.corners)
+  {
+    const Eigen::Vector3d d = c - f.corners[0];
+    lo_u = std::min (lo_u, d.dot (u));
+    hi_u = std::max (hi_u, d.dot (u));
+    lo_v = std::min (lo_v, d.dot (v));
+    hi_v = std::max (hi_v, d.dot (v));
+  }
+  std::uniform_real_distribution<double> jitter (-0.3 * spacing, 0.3 * spacing);
+  for (double a = lo_u + 0.5 * spacing; a < hi_u; a += spacing)
+    for (double b = lo_v + 0.5 * spacing; b < hi_v; b += spacing)
+    {
+      const Eigen::Vector3d p = f.corners[0] + (a + jitter (rng)) * u + (b + jitter (rng)) * v;
+      if (projectsInside (f, n, p))
+        out.push_back (makePoint (p, n));
+    }
+}
+
+Face
+quad (const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c,
+      const Eigen::Vector3d &d)
+{
+  return Face{{a, b, c, d}};
+}
+}  // namespace
+
+double
+Shape::area () const
+{
+  if (radius > 0.0)
+    return 4.0 * M_PI * radius * radius;
+  double a = 0.0;
+  for (const auto &f : faces)
+    a += faceArea (f);
+  return a;
+}
+
+double
+Shape::distance (const Eigen::Vector3d &p) const
+{
+  if (radius > 0.0)
+    return std::abs ((p - centre).norm () - radius);
+  double best = std::numeric_limits<double>::max ();
+  for (const auto &f : faces)
+    best = std::min (best, faceDistance (f, p));
+  return best;
+}
+
+Cloud
+Shape::sample (std::size_t points, unsigned seed) const
+{
+  Cloud out;
+  std::mt19937 rng (seed);
+  const double spacing = std::sqrt (area () / std::max<std::size_t> (points, 1));
+  if (radius > 0.0)
+  {
+    // Fibonacci lattice: even spacing with no poles; a little tangent jitter
+    // so that no two rims of a cut look alike.
+    std::uniform_real_distribution<double> jitter (-0.25 * spacing, 0.25 * spacing);
+    const double golden = M_PI * (3.0 - std::sqrt (5.0));
+    for (std::size_t i = 0; i < points; ++i)
+    {
+      const double z = 1.0 - 2.0 * (i + 0.5) / points;
+      const double ring = std::sqrt (1.0 - z * z);
+      Eigen::Vector3d d (ring * std::cos (golden * i), ring * std::sin (golden * i), z);
+      const Eigen::Vector3d t1 = d.unitOrthogonal ();
+      const Eigen::Vector3d t2 = d.cross (t1);
+      d = (radius * d + jitter (rng) * t1 + jitter (rng) * t2).normalized ();
+      out.push_back (makePoint (centre + radius * d, d));
+    }
+  }
+  else
+  {
+    for (const auto &f : faces)
+      sampleFace (f, spacing, rng, out);
+  }
+  out.width = static_cast<std::uint32_t> (out.size ());
+  out.height = 1;
+  out.is_dense = true;
+  return out;
+}
+
+Shape
+sphere ()
+{
+  Shape s;
+  s.name = "sphere";
+  s.radius = 0.5;
+  s.closed = true;
+  return s;
+}
+
+Shape
+cube ()
+{
+  using V = Eigen::Vector3d;
+  Shape s;
+  s.name = "cube";
+  s.closed = true;
+  s.faces = {
+      quad (V (0, 0, 0), V (0, 1, 0), V (1, 1, 0), V (1, 0, 0)),  // z = 0, normal -z
+      quad (V (0, 0, 1), V (1, 0, 1), V (1, 1, 1), V (0, 1, 1)),  // z = 1, normal +z
+      quad (V (0, 0, 0), V (1, 0, 0), V (1, 0, 1), V (0, 0, 1)),  // y = 0, normal -y
+      quad (V (0, 1, 0), V (0, 1, 1), V (1, 1, 1), V (1, 1, 0)),  // y = 1, normal +y
+      quad (V (0, 0, 0), V (0, 0, 1), V (0, 1, 1), V (0, 1, 0)),  // x = 0, normal -x
+      quad (V (1, 0, 0), V (1, 1, 0), V (1, 1, 1), V (1, 0, 1)),  // x = 1, normal +x
+  };
+  return s;
+}
+
+Shape
+openPyramid ()
+{
+  using V = Eigen::Vector3d;
+  Shape s;
+  s.name = "pyramid";
+  const V apex (0.5, 0.5, 1.0);
+  const V a (0, 0, 0), b (1, 0, 0), c (1, 1, 0), d (0, 1, 0);
+  s.faces = {Face{{a, b, apex}}, Face{{b, c, apex}}, Face{{c, d, apex}}, Face{{d, a, apex}}};
+  return s;
+}
+
+Shape
+dihedral ()
+{
+  using V = Eigen::Vector3d;
+  Shape s;
+  s.name = "dihedral";
+  // z = 0.5 + y for y < 0.5 and z = 1.5 - y beyond: a 90 degree ridge at y = 0.5.
+  s.faces = {quad (V (0, 0, 0.5), V (1, 0, 0.5), V (1, 0.5, 1), V (0, 0.5, 1)),
+             quad (V (0, 0.5, 1), V (1, 0.5, 1), V (1, 1, 0.5), V (0, 1, 0.5))};
+  return s;
+}
+
+Shape
+flatPatch ()
+{
+  using V = Eigen::Vector3d;
+  Shape s;
+  s.name = "flat";
+  s.faces = {quad (V (0, 0, 0.5), V (1, 0, 0.5), V (1, 1, 0.5), V (0, 1, 0.5))};
+  return s;
+}
+
+CutCloud
+cutHoles (const Cloud &cloud, const std::vector<Ball> &balls)
+{
+  CutCloud cut;
+  for (const auto &p : cloud)
+  {
+    const Eigen::Vector3d q = p.getVector3fMap ().cast<double> ();
+    const bool inside = std::any_of (balls.begin (), balls.end (), [&q] (const Ball &b) {
+      return (q - b.centre).norm () < b.radius;
+    });
+    (inside ? cut.removed : cut.kept).push_back (p);
+  }
+  for (Cloud *c : {&cut.kept, &cut.removed})
+  {
+    c->width = static_cast<std::uint32_t> (c->size ());
+    c->height = 1;
+    c->is_dense = true;
+  }
+  return cut;
+}
+
+void
+addNormalNoise (Cloud &cloud, double sigma, unsigned seed)
+{
+  std::mt19937 rng (seed);
+  std::normal_distribution<float> noise (0.f, static_cast<float> (sigma));
+  for (auto &p : cloud)
+    p.getVector3fMap () += noise (rng) * p.getNormalVector3fMap ();
+}
+
+double
+meanSpacing (const Cloud &cloud)
+{
+  std::vector<Eigen::Vector3f> positions;
+  for (const auto &p : cloud)
+    positions.push_back (p.getVector3fMap ());
+  PointGrid grid (PointGrid::suggestCellSize (positions, 4));
+  for (std::size_t i = 0; i < positions.size (); ++i)
+    grid.insert (positions[i], static_cast<int> (i));
+  double sum = 0.0;
+  std::size_t count = 0;
+  std::vector<PointGrid::Neighbour> found;
+  for (const auto &p : positions)
+  {
+    grid.nearestK (p, 2, found);
+    if (found.size () == 2)
+    {
+      sum += std::sqrt (found[1].sqr_distance);
+      ++count;
+    }
+  }
+  return count ? sum / count : 0.0;
+}
+
+}  // namespace shapes
+}  // namespace pcl_holefill

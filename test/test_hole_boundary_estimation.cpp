@@ -1,0 +1,204 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "hole_cases.h"
+
+#include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/shapes.h>
+
+#include <pcl/search/kdtree.h>
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using namespace pcl_holefill;
+using Cloud = shapes::Cloud;
+
+namespace
+{
+std::vector<BoundaryLoop>
+detect (const Cloud &cloud)
+{
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (cloud.makeShared ());
+  std::vector<BoundaryLoop> loops;
+  est.compute (loops);
+  return loops;
+}
+
+/** Distance from p to the rim a ball cuts: how far outside the ball it is. */
+double
+distanceToRim (const Eigen::Vector3d &p, const shapes::Ball &b)
+{
+  return (p - b.centre).norm () - b.radius;
+}
+
+std::size_t
+countHoles (const std::vector<BoundaryLoop> &loops)
+{
+  return std::count_if (loops.begin (), loops.end (), [] (const auto &l) { return l.is_hole; });
+}
+}  // namespace
+
+class DetectionOnShape : public ::testing::TestWithParam<std::tuple<int, int>>
+{
+};
+
+TEST_P (DetectionOnShape, FindsEveryHoleOnceAsAClosedLoopOnItsRim)
+{
+  const auto [case_index, hole_count] = GetParam ();
+  const test_cases::Case c = test_cases::detectionCases ()[case_index];
+  const std::vector<shapes::Ball> holes (c.holes.begin (), c.holes.begin () + hole_count);
+  const auto cut = shapes::cutHoles (c.shape.sample (c.points), holes);
+  // The sampling pitch (each sample's share of the area, as a square's side),
+  // a little more than the mean nearest-neighbour distance of a jittered grid.
+  const double spacing = std::sqrt (c.shape.area () / static_cast<double> (c.points));
+  const auto loops = detect (cut.kept);
+
+  std::vector<int> found_per_hole (holes.size (), 0);
+  for (const auto &loop : loops)
+  {
+    if (!loop.is_hole)
+      continue;
+    EXPECT_TRUE (loop.closed) << c.shape.name;
+    // The loop belongs to the hole whose rim its first point is nearest to.
+    const Eigen::Vector3d first = cut.kept[loop.indices[0]].getVector3fMap ().cast<double> ();
+    std::size_t owner = 0;
+    for (std::size_t h = 1; h < holes.size (); ++h)
+      if (std::abs (distanceToRim (first, holes[h])) < std::abs (distanceToRim (first, holes[owner])))
+        owner = h;
+    ++found_per_hole[owner];
+    for (std::size_t i = 0; i < loop.indices.size (); ++i)
+    {
+      const Eigen::Vector3d p = cut.kept[loop.indices[i]].getVector3fMap ().cast<double> ();
+      const Eigen::Vector3d q =
+          cut.kept[loop.indices[(i + 1) % loop.indices.size ()]].getVector3fMap ().cast<double> ();
+      EXPECT_LE (distanceToRim (p, holes[owner]), 2.0 * spacing) << c.shape.name << " loop point " << i;
+      EXPECT_LE ((p - q).norm (), 3.0 * spacing) << c.shape.name << " step " << i;
+    }
+  }
+  for (std::size_t h = 0; h < holes.size (); ++h)
+    EXPECT_EQ (found_per_hole[h], 1) << c.shape.name << " hole " << h << " of " << holes.size ();
+  EXPECT_EQ (countHoles (loops), holes.size ()) << c.shape.name;
+}
+
+INSTANTIATE_TEST_SUITE_P (
+    AllShapes, DetectionOnShape,
+    ::testing::Combine (::testing::Range (0, 5), ::testing::Values (1, 2, 5)),
+    [] (const auto &info) {
+      return test_cases::detectionCases ()[std::get<0> (info.param)].shape.name + "_" +
+             std::to_string (std::get<1> (info.param)) + "_holes";
+    });
+
+TEST (HoleBoundaryEstimation, ClosedShapesWithoutHolesHaveNoLoop)
+{
+  for (const auto &shape : {shapes::sphere (), shapes::cube ()})
+    EXPECT_TRUE (detect (shape.sample (6000)).empty ()) << shape.name;
+}
+
+TEST (HoleBoundaryEstimation, OuterBordersAreLabelledAsBorders)
+{
+  for (const auto &shape : {shapes::openPyramid (), shapes::dihedral (), shapes::flatPatch ()})
+  {
+    const auto loops = detect (shape.sample (4000));
+    ASSERT_EQ (loops.size (), 1u) << shape.name;
+    EXPECT_FALSE (loops[0].is_hole) << shape.name;
+    EXPECT_TRUE (loops[0].closed) << shape.name;
+    EXPECT_GT (loops[0].diameter, 1.0f) << shape.name;
+  }
+}
+
+TEST (HoleBoundaryEstimation, MaxHoleDiameterTurnsLargeHolesIntoBorders)
+{
+  const auto cut = shapes::cutHoles (shapes::flatPatch ().sample (4000),
+                                     {{{0.3, 0.3, 0.5}, 0.05}, {{0.7, 0.7, 0.5}, 0.15}});
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (cut.kept.makeShared ());
+  est.setMaxHoleDiameter (0.2f);
+  std::vector<BoundaryLoop> loops;
+  est.compute (loops);
+  ASSERT_EQ (countHoles (loops), 1u);
+  for (const auto &l : loops)
+    if (l.is_hole)
+      EXPECT_LT (l.diameter, 0.2f);
+}
+
+TEST (HoleBoundaryEstimation, InjectedKdTreeGivesTheSameLoops)
+{
+  const auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}});
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (cut.kept.makeShared ());
+  est.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
+  std::vector<BoundaryLoop> with_tree;
+  est.compute (with_tree);
+  const auto with_grid = detect (cut.kept);
+  ASSERT_EQ (with_tree.size (), 1u);
+  ASSERT_EQ (with_grid.size (), 1u);
+  EXPECT_EQ (with_tree[0].indices, with_grid[0].indices);
+}
+
+TEST (HoleBoundaryEstimation, SemiAutomaticModeReproducesTheCornerLoop)
+{
+  const auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}});
+  const auto automatic = detect (cut.kept);
+  ASSERT_EQ (automatic.size (), 1u);
+  const auto &loop = automatic[0].indices;
+  // Four feature points, evenly spaced along the automatic loop, as a user would click them.
+  pcl::Indices features;
+  for (int i = 0; i < 4; ++i)
+    features.push_back (loop[i * loop.size () / 4]);
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (cut.kept.makeShared ());
+  BoundaryLoop refined;
+  ASSERT_TRUE (est.refineFeaturePoints (features, refined));
+  EXPECT_TRUE (refined.is_hole);
+  // Same rim: every refined point is within 2 spacings of the automatic loop, and
+  // the refined loop is as dense (consecutive points within 3 spacings).
+  const double spacing = shapes::meanSpacing (cut.kept);
+  for (std::size_t i = 0; i < refined.indices.size (); ++i)
+  {
+    const Eigen::Vector3f p = cut.kept[refined.indices[i]].getVector3fMap ();
+    float nearest = std::numeric_limits<float>::max ();
+    for (const auto j : loop)
+      nearest = std::min (nearest, (cut.kept[j].getVector3fMap () - p).norm ());
+    EXPECT_LE (nearest, 2.0 * spacing);
+    const Eigen::Vector3f q = cut.kept[refined.indices[(i + 1) % refined.indices.size ()]].getVector3fMap ();
+    EXPECT_LE ((p - q).norm (), 3.0 * spacing);
+  }
+  EXPECT_NEAR (refined.length, automatic[0].length, 0.15 * automatic[0].length);
+}
+
+TEST (HoleBoundaryEstimation, SkipsNanPointsAndZeroNormals)
+{
+  auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}});
+  Cloud cloud = cut.kept;
+  pcl::PointNormal bad;
+  bad.x = std::numeric_limits<float>::quiet_NaN ();
+  bad.y = bad.z = 0.f;
+  bad.normal_x = 1.f;
+  cloud.push_back (bad);
+  pcl::PointNormal zero = cloud[10];
+  zero.normal_x = zero.normal_y = zero.normal_z = 0.f;
+  cloud.push_back (zero);
+  const auto loops = detect (cloud);
+  ASSERT_EQ (countHoles (loops), 1u);
+  for (const auto i : loops[0].indices)
+    EXPECT_LT (static_cast<std::size_t> (i), cut.kept.size ());
+}
+
+TEST (HoleBoundaryEstimation, EmptyCloudAndBadParametersGiveNoLoop)
+{
+  EXPECT_TRUE (detect (Cloud ()).empty ());
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (shapes::flatPatch ().sample (500).makeShared ());
+  est.setKSearch (-4);
+  std::vector<BoundaryLoop> loops (3);
+  est.compute (loops);
+  EXPECT_TRUE (loops.empty ());
+  est.setKSearch (16);
+  est.setAngleThreshold (std::numeric_limits<float>::quiet_NaN ());
+  est.compute (loops);
+  EXPECT_TRUE (loops.empty ());
+}

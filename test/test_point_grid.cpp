@@ -1,0 +1,102 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/voxel_hash_search.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+using pcl_holefill::PointGrid;
+
+namespace
+{
+std::vector<Eigen::Vector3f>
+randomPoints (std::size_t n, unsigned seed)
+{
+  std::mt19937 rng (seed);
+  std::uniform_real_distribution<float> u (-1.f, 1.f);
+  std::vector<Eigen::Vector3f> points;
+  for (std::size_t i = 0; i < n; ++i)
+    points.emplace_back (u (rng), u (rng), 0.1f * u (rng));
+  return points;
+}
+
+std::vector<float>
+bruteForceSqrDistances (const std::vector<Eigen::Vector3f> &points, const Eigen::Vector3f &q)
+{
+  std::vector<float> d;
+  for (const auto &p : points)
+    d.push_back ((p - q).squaredNorm ());
+  std::sort (d.begin (), d.end ());
+  return d;
+}
+}  // namespace
+
+TEST (PointGrid, NearestKMatchesBruteForce)
+{
+  const auto points = randomPoints (3000, 1);
+  PointGrid grid (PointGrid::suggestCellSize (points, 8));
+  for (std::size_t i = 0; i < points.size (); ++i)
+    grid.insert (points[i], static_cast<int> (i));
+  std::vector<PointGrid::Neighbour> found;
+  for (const Eigen::Vector3f q : {Eigen::Vector3f (0, 0, 0), Eigen::Vector3f (0.9f, -0.9f, 0.f),
+                                  Eigen::Vector3f (5.f, 5.f, 5.f)})
+  {
+    grid.nearestK (q, 12, found);
+    const auto truth = bruteForceSqrDistances (points, q);
+    ASSERT_EQ (found.size (), 12u);
+    for (int k = 0; k < 12; ++k)
+      EXPECT_FLOAT_EQ (found[k].sqr_distance, truth[k]);
+  }
+}
+
+TEST (PointGrid, RadiusMatchesBruteForceAndGrows)
+{
+  auto points = randomPoints (2000, 2);
+  PointGrid grid (0.05f);
+  for (std::size_t i = 0; i < points.size (); ++i)
+    grid.insert (points[i], static_cast<int> (i));
+  // Points added later are found too.
+  points.emplace_back (0.01f, 0.f, 0.f);
+  grid.insert (points.back (), static_cast<int> (points.size () - 1));
+  std::vector<PointGrid::Neighbour> found;
+  grid.withinRadius (Eigen::Vector3f::Zero (), 0.17f, found);
+  const auto truth = bruteForceSqrDistances (points, Eigen::Vector3f::Zero ());
+  const auto inside = std::count_if (truth.begin (), truth.end (), [] (float d) { return d <= 0.17f * 0.17f; });
+  EXPECT_EQ (static_cast<long> (found.size ()), inside);
+  EXPECT_TRUE (std::any_of (found.begin (), found.end (),
+                            [&] (const auto &n) { return n.id == static_cast<int> (points.size () - 1); }));
+}
+
+TEST (PointGrid, IgnoresNonFiniteAndEmptyQueries)
+{
+  PointGrid grid (0.1f);
+  grid.insert (Eigen::Vector3f (std::nanf (""), 0.f, 0.f), 0);
+  EXPECT_EQ (grid.size (), 0u);
+  std::vector<PointGrid::Neighbour> found;
+  grid.nearestK (Eigen::Vector3f::Zero (), 3, found);
+  EXPECT_TRUE (found.empty ());
+  EXPECT_EQ (PointGrid::suggestCellSize ({}, 8), 0.f);
+}
+
+TEST (VoxelHashSearch, IsAPclSearch)
+{
+  pcl::PointCloud<pcl::PointNormal>::Ptr cloud (new pcl::PointCloud<pcl::PointNormal>);
+  for (const auto &p : randomPoints (500, 3))
+  {
+    pcl::PointNormal q;
+    q.getVector3fMap () = p;
+    cloud->push_back (q);
+  }
+  pcl::search::Search<pcl::PointNormal>::Ptr search (new pcl_holefill::VoxelHashSearch<pcl::PointNormal>);
+  search->setInputCloud (cloud);
+  pcl::Indices idx;
+  std::vector<float> d2;
+  ASSERT_EQ (search->nearestKSearch ((*cloud)[7], 1, idx, d2), 1);
+  EXPECT_EQ (idx[0], 7);
+  EXPECT_EQ (d2[0], 0.f);
+}

@@ -1,0 +1,167 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/front.h>
+#include <pcl_holefill/normal_propagation.h>
+#include <pcl_holefill/point_grid.h>
+
+#include <pcl/pcl_base.h>
+#include <pcl/search/search.h>
+
+#include <cmath>
+
+namespace pcl_holefill
+{
+/** \brief Section 4 of the paper: one pass of hole-boundary contraction.
+  *
+  * From the former boundary B' (a Front) it builds the new boundary B:
+  *  1. each b'_i gets a contracting direction n x tangent (tangent over a
+  *     5-point stencil; one inward sign per chain, by a vote of "away from the
+  *     mean of the existing neighbours") and a control candidate at the
+  *     equilibrium distance d_eq along it (eq. 5-6);
+  *  2. the candidate's position is optimised (eq. 7-8, two rounds, normals
+  *     from NormalPropagation, eq. 1);
+  *  3. it is discarded when it feels a repulsive force (eq. 5: a former
+  *     boundary point other than b'_i closer than d_eq), when it lands on
+  *     existing surface (closer than d_eq/2: the hole is closed there), when
+  *     it overshoots (the combination constraint, section 4.4), or when it
+  *     leaves the hole's bounding ball;
+  *  4. the kept control points, in order, form the control curve C, cut
+  *     where consecutive ones are more than 3 d_eq apart (fronts that met);
+  *  5. C is sampled every d_eq of arc length (sec. 4.2), each sample optimised
+  *     and checked as in 2-3: the kept samples are B.
+  *
+  * Combination constraint (sec. 4.4), as the paper's READING notes advise:
+  * a sample is tested against the tangent plane of every existing point q
+  * within r (input and filled), not only of control points, because when one
+  * face's front reaches a ridge first there is no control point of the other
+  * face yet. q is convex when its neighbours lie below its tangent plane on
+  * average (their g1-weighted mean offset < -tolerance), concave when above,
+  * flat (untested) otherwise; a sample must lie on or below the plane of a
+  * convex q and on or above that of a concave q, within the tolerance.
+  *
+  * The input cloud is the surface known so far and must be searchable by the
+  * given search method; the caller appends each pass's B to it.
+  */
+template <typename PointT>
+class ElasticSampler : public pcl::PCLBase<PointT>
+{
+public:
+  using Ptr = pcl::shared_ptr<ElasticSampler<PointT>>;
+  using ConstPtr = pcl::shared_ptr<const ElasticSampler<PointT>>;
+  using PointCloud = pcl::PointCloud<PointT>;
+  using PointCloudConstPtr = typename PointCloud::ConstPtr;
+  using SearchPtr = typename pcl::search::Search<PointT>::Ptr;
+
+  /** \brief d_eq from the paper's sigma_r by equation (6): exp(-d_eq / sigma_r^2) = 1e-4. */
+  static float
+  equilibriumDistanceFromSigmaR (float sigma_r) { return sigma_r * sigma_r * std::log (1e4f); }
+
+  void
+  setInputCloud (const PointCloudConstPtr &cloud) override;
+
+  void
+  setSearchMethod (const SearchPtr &search);
+  SearchPtr
+  getSearchMethod () const { return propagation_.getSearchMethod (); }
+
+  /** \brief Neighbourhood radius r of equations (1) and (7) (cloud units). */
+  void
+  setRadius (float radius) { propagation_.setRadius (radius); }
+  float
+  getRadius () const { return propagation_.getRadius (); }
+
+  void
+  setSigmaD (float sigma_d) { propagation_.setSigmaD (sigma_d); }
+  float
+  getSigmaD () const { return propagation_.getSigmaD (); }
+
+  /** \brief sigma_n of g2, or kSup (the paper's "Sup") to switch g2 off. */
+  void
+  setSigmaN (float sigma_n) { propagation_.setSigmaN (sigma_n); }
+  float
+  getSigmaN () const { return propagation_.getSigmaN (); }
+
+  void
+  setFirstOrder (bool first_order) { propagation_.setFirstOrder (first_order); }
+  bool
+  getFirstOrder () const { return propagation_.getFirstOrder (); }
+
+  /** \brief d_eq, the spacing of the new samples (cloud units, > 0). */
+  void
+  setEquilibriumDistance (float distance) { equilibrium_distance_ = distance; }
+  float
+  getEquilibriumDistance () const { return equilibrium_distance_; }
+
+  /** \brief Tolerance of the combination constraint and of the convex/concave
+    * labels (cloud units, >= 0). */
+  void
+  setConstraintTolerance (float tolerance) { tolerance_ = tolerance; }
+  float
+  getConstraintTolerance () const { return tolerance_; }
+
+  /** \brief Switches the combination constraint (default on). */
+  void
+  setCombinationConstraint (bool enabled) { combination_constraint_ = enabled; }
+  bool
+  getCombinationConstraint () const { return combination_constraint_; }
+
+  /** \brief New points must stay inside this ball (radius 0 = unbounded). */
+  void
+  setBoundingBall (const Eigen::Vector3f &centre, float radius)
+  {
+    bound_centre_ = centre;
+    bound_radius_ = radius;
+  }
+
+  /** \brief One pass: \a former is B', \a next receives B. False (PCL_ERROR) on bad setup. */
+  bool
+  contract (const Front &former, Front &next, ContractionStats &stats);
+
+  /** \brief Equations (7)-(8), two rounds, then the final normal (eq. 1).
+    * False when the neighbourhood carries no weight. */
+  bool
+  optimisePosition (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
+                    Eigen::Vector3f &normal) const;
+
+protected:
+  using pcl::PCLBase<PointT>::input_;
+
+private:
+  enum class Verdict
+  {
+    kKept,
+    kRepelled,
+    kTooClose,
+    kOvershoot,
+    kUnsupported
+  };
+
+  /** Optimises a candidate and runs every check but the repulsion. */
+  Verdict
+  place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal) const;
+
+  /** -1 concave, 0 flat, +1 convex; cached per surface point. */
+  int
+  curvatureSign (int index) const;
+
+  bool
+  overshoots (const Eigen::Vector3f &position) const;
+
+  NormalPropagation<PointT> propagation_;
+  float equilibrium_distance_ = 0.f;
+  float tolerance_ = 0.f;
+  bool combination_constraint_ = true;
+  Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
+  float bound_radius_ = 0.f;
+  mutable std::vector<signed char> curvature_signs_;  //!< 2 = not computed yet
+};
+
+}  // namespace pcl_holefill
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_holefill/impl/elastic_sampler.hpp>
+#endif

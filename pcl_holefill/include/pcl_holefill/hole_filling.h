@@ -1,0 +1,171 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/boundary_loop.h>
+#include <pcl_holefill/hole_report.h>
+#include <pcl_holefill/local_surface.h>
+
+#include <pcl/filters/filter.h>
+#include <pcl/search/search.h>
+
+#include <vector>
+
+namespace pcl_holefill
+{
+/** \brief Fills the holes of an oriented point cloud: the paper's Algorithm 1
+  * ("Shape controllable geometry completion for point cloud models") as a
+  * PCL filter.
+  *
+  * filter(output) writes every input point (of setIndices(), if given),
+  * unchanged, then the filled points with their propagated normals; other
+  * fields of a filled point (colour, intensity, ...) are copied from its
+  * nearest neighbour. Per hole: the boundary loop (found by
+  * HoleBoundaryEstimation, or given by setHoles()), then passes of normal
+  * propagation and elastic sampling (ElasticSampler) until the paper's
+  * termination rule; holes are independent and filled in parallel, in a
+  * deterministic order. getReports() tells what happened to each.
+  *
+  * Parameters, with the paper's names. Lengths are in cloud units and, left
+  * at 0, derived from the mean point spacing h around each hole, so the
+  * defaults work on any cloud without tuning:
+  *  - r (setRadius): neighbourhood of eq. (1) and (7); 0 = max(4h, 2.5 d_eq).
+  *  - shrink (setRadiusShrinkFactor): r <- r / shrink each pass (the paper's
+  *    Fig. 1(c) uses 1.1); 1 = constant. r never drops under max(2h, 1.5 d_eq).
+  *  - sigma_d (setSigmaD): std of g1; 0 = r/2.
+  *  - sigma_n (setSigmaN): std of g2 over |n_p - n_ref| (no unit; the paper
+  *    prints "BBL", which cannot apply to a normal difference): small (0.1,
+  *    the default) recovers sharp edges, corners and apexes; kSup (the
+  *    paper's "Sup") switches g2 off for round patches.
+  *  - sigma_r (setSigmaR): the elastic force's width. The equilibrium
+  *    distance, i.e. the spacing of the filled points, follows from eq. (6)
+  *    as d_eq = sigma_r^2 ln(10^4), taken literally in cloud units (sigma_r
+  *    in sqrt(cloud units)). The paper's Table 1 values (0.12-0.25 "BBL")
+  *    would give d_eq of 13-58 % of the model's size under any reading, so
+  *    they cannot be reused. 0 (default) = d_eq from the input density:
+  *    d_eq = spacing factor x h (setSpacingFactor, default 1.5: a grid of
+  *    pitch 1.5 h is about as dense as a jittered sampling whose nearest
+  *    neighbours are h apart, and still leaves no gap wider than ~1 h).
+  *  - termination ratio (setTerminationRatio): stop a hole when kept control
+  *    points / boundary points < ratio (paper: 30 %).
+  *  - max passes (setMaxPasses): hard bound per hole (default 200).
+  *  - first order (setFirstOrder): continue the rim's curvature (default
+  *    true; false is the paper's zero-order eq. (1), which makes cones).
+  *  - denoise (setDenoise): the bilateral preprocessing of sec. 3.2 on the
+  *    input first (the only case where input points move; default off).
+  *  - max hole diameter (setMaxHoleDiameter): detected holes wider than
+  *    this are left alone (0 = fill all).
+  */
+template <typename PointT>
+class HoleFilling : public pcl::Filter<PointT>
+{
+public:
+  using Ptr = pcl::shared_ptr<HoleFilling<PointT>>;
+  using ConstPtr = pcl::shared_ptr<const HoleFilling<PointT>>;
+  using PointCloud = pcl::PointCloud<PointT>;
+  using PointCloudPtr = typename PointCloud::Ptr;
+  using SearchPtr = typename pcl::search::Search<PointT>::Ptr;
+
+  HoleFilling () { filter_name_ = "HoleFilling"; }
+
+  void setRadius (float r) { radius_ = r; }
+  float getRadius () const { return radius_; }
+
+  void setRadiusShrinkFactor (float f) { shrink_ = f; }
+  float getRadiusShrinkFactor () const { return shrink_; }
+
+  void setSigmaD (float s) { sigma_d_ = s; }
+  float getSigmaD () const { return sigma_d_; }
+
+  void setSigmaN (float s) { sigma_n_ = s; }
+  float getSigmaN () const { return sigma_n_; }
+
+  void setSigmaR (float s) { sigma_r_ = s; }
+  float getSigmaR () const { return sigma_r_; }
+
+  void setSpacingFactor (float f) { spacing_factor_ = f; }
+  float getSpacingFactor () const { return spacing_factor_; }
+
+  void setTerminationRatio (float t) { termination_ratio_ = t; }
+  float getTerminationRatio () const { return termination_ratio_; }
+
+  void setMaxPasses (int n) { max_passes_ = n; }
+  int getMaxPasses () const { return max_passes_; }
+
+  void setFirstOrder (bool on) { first_order_ = on; }
+  bool getFirstOrder () const { return first_order_; }
+
+  /** \brief The combination constraint of section 4.4 (default on). */
+  void setCombinationConstraint (bool on) { combination_constraint_ = on; }
+  bool getCombinationConstraint () const { return combination_constraint_; }
+
+  void setDenoise (bool on) { denoise_ = on; }
+  bool getDenoise () const { return denoise_; }
+
+  void setMaxHoleDiameter (float d) { max_hole_diameter_ = d; }
+  float getMaxHoleDiameter () const { return max_hole_diameter_; }
+
+  /** \brief Loops to fill (indices into the input cloud) instead of the
+    * detected holes; an empty vector (default) means detect. */
+  void setHoles (const std::vector<BoundaryLoop> &holes) { user_holes_ = holes; }
+  const std::vector<BoundaryLoop> &getHoles () const { return user_holes_; }
+
+  /** \brief A search over the input cloud for detection and for gathering each
+    * hole's surroundings (default: a VoxelHashSearch). */
+  void setSearchMethod (const SearchPtr &search) { search_ = search; }
+  SearchPtr getSearchMethod () const { return search_; }
+
+  /** \brief Threads for detection and for filling holes side by side; 0 = all cores. */
+  void setNumberOfThreads (unsigned int n) { threads_ = n; }
+  unsigned int getNumberOfThreads () const { return threads_; }
+
+  /** \brief After filter(): one report per hole, in output order. */
+  const std::vector<HoleReport> &getReports () const { return reports_; }
+
+  /** \brief True when every parameter is usable; prints the first bad one otherwise. */
+  bool
+  checkParameters () const;
+
+protected:
+  using pcl::Filter<PointT>::filter_name_;
+  using pcl::Filter<PointT>::input_;
+  using pcl::Filter<PointT>::indices_;
+
+  void
+  applyFilter (PointCloud &output) override;
+
+private:
+  /** Fills one hole of \a working; the new points go to \a filled. */
+  void
+  fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
+            PointCloud &filled, HoleReport &report) const;
+
+  /** The loops to fill, as indices into \a working (the indexed points). */
+  bool
+  collectHoles (const PointCloudPtr &working, const SearchPtr &search, std::vector<BoundaryLoop> &holes) const;
+
+  float radius_ = 0.f;
+  float shrink_ = 1.f;
+  float sigma_d_ = 0.f;
+  float sigma_n_ = 0.1f;
+  float sigma_r_ = 0.f;
+  float spacing_factor_ = 1.5f;
+  float termination_ratio_ = 0.3f;
+  int max_passes_ = 200;
+  bool first_order_ = true;
+  bool combination_constraint_ = true;
+  bool denoise_ = false;
+  float max_hole_diameter_ = 0.f;
+  std::vector<BoundaryLoop> user_holes_;
+  SearchPtr search_;
+  unsigned int threads_ = 0;
+  std::vector<HoleReport> reports_;
+};
+
+}  // namespace pcl_holefill
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_holefill/impl/hole_filling.hpp>
+#endif

@@ -1,0 +1,114 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/bilateral_preprocessor.h>
+#include <pcl_holefill/local_surface.h>
+#include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/voxel_hash_search.h>
+
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+
+#include <cmath>
+
+namespace pcl_holefill
+{
+template <typename PointT> void
+BilateralPreprocessor<PointT>::applyFilter (PointCloud &output)
+{
+  if (!(sigma_d_ >= 0.f && std::isfinite (sigma_d_)) || !(sigma_n_ > 0.f && std::isfinite (sigma_n_)) ||
+      iterations_ < 1 || iterations_ > 100)
+  {
+    PCL_ERROR ("[pcl_holefill::BilateralPreprocessor] Invalid parameters: sigma_d = %g (>= 0), sigma_n = %g (> 0), "
+               "iterations = %d (1..100).\n", sigma_d_, sigma_n_, iterations_);
+    output.clear ();
+    return;
+  }
+  typename PointCloud::Ptr current (new PointCloud);
+  pcl::copyPointCloud (*input_, *indices_, *current);
+  SearchPtr search = search_;
+  if (!search)
+    search.reset (new VoxelHashSearch<PointT> (16));
+
+  for (int round = 0; round < iterations_; ++round)
+  {
+    search->setInputCloud (current);
+    float sigma_d = sigma_d_;
+    if (!(sigma_d > 0.f))
+    {
+      // 2 x the mean nearest-neighbour distance: a few rings of neighbours.
+      double sum = 0.0;
+      std::size_t count = 0;
+      pcl::Indices found;
+      std::vector<float> d2;
+      for (std::size_t i = 0; i < current->size (); i += 1 + current->size () / 2000)
+        if (isOrientedPoint ((*current)[i]) && search->nearestKSearch ((*current)[i], 2, found, d2) == 2)
+        {
+          sum += std::sqrt (d2[1]);
+          ++count;
+        }
+      sigma_d = count ? static_cast<float> (2.0 * sum / count) : 0.f;
+      if (!(sigma_d > 0.f))
+        break;
+    }
+    const BilateralKernel kernel{sigma_d, sigma_n_};
+    const double radius = 3.0 * sigma_d;
+    PointCloud next = *current;
+    // f1: normals.
+    for (std::size_t i = 0; i < current->size (); ++i)
+    {
+      const PointT &p = (*current)[i];
+      if (!isOrientedPoint (p))
+        continue;
+      const Eigen::Vector3f n = p.getNormalVector3fMap ().normalized ();
+      pcl::Indices found;
+      std::vector<float> d2;
+      search->radiusSearch (p, radius, found, d2);
+      Eigen::Vector3f sum = Eigen::Vector3f::Zero ();
+      for (std::size_t k = 0; k < found.size (); ++k)
+      {
+        const PointT &q = (*current)[found[k]];
+        if (!isOrientedPoint (q))
+          continue;
+        const Eigen::Vector3f nq = q.getNormalVector3fMap ().normalized ();
+        sum += kernel.spatial (d2[k]) * kernel.normal ((nq - n).squaredNorm ()) * nq;
+      }
+      if (sum.norm () > 1e-9f)
+        next[i].getNormalVector3fMap () = sum.normalized ();
+    }
+    // f2: positions along the filtered normals.
+    for (std::size_t i = 0; i < current->size (); ++i)
+    {
+      const PointT &p = next[i];
+      if (!isOrientedPoint (p))
+        continue;
+      const Eigen::Vector3f n = p.getNormalVector3fMap ();
+      pcl::Indices found;
+      std::vector<float> d2;
+      search->radiusSearch ((*current)[i], radius, found, d2);
+      float total = 0.f, offset = 0.f;
+      for (std::size_t k = 0; k < found.size (); ++k)
+      {
+        const PointT &q = next[found[k]];
+        if (!isOrientedPoint (q))
+          continue;
+        const float w = kernel.spatial (d2[k]) * kernel.normal ((q.getNormalVector3fMap () - n).squaredNorm ());
+        offset += w * ((*current)[found[k]].getVector3fMap () - (*current)[i].getVector3fMap ()).dot (n);
+        total += w;
+      }
+      if (total > 1e-9f)
+        next[i].getVector3fMap () = (*current)[i].getVector3fMap () + n * (offset / total);
+    }
+    *current = next;
+  }
+  const auto header = output.header;
+  output = *current;
+  output.header = header;
+}
+
+}  // namespace pcl_holefill
+
+#define PCL_INSTANTIATE_BilateralPreprocessor(T) template class pcl_holefill::BilateralPreprocessor<T>;

@@ -1,0 +1,338 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/impl/normal_propagation.hpp>
+
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_holefill
+{
+namespace detail
+{
+// A control candidate is repelled by a former boundary point closer than
+// d_eq (eq. 5); the slack absorbs the small shift of the position optimisation.
+constexpr float kRepulsionReach = 0.95f;
+// Closer than this (in d_eq) to existing surface, a new point would duplicate it.
+constexpr float kDuplicateReach = 0.5f;
+// Consecutive control points or samples further apart than this (in d_eq)
+// belong to different pieces of boundary: the front has met itself between them.
+constexpr float kChainBreak = 3.f;
+// Half-width of the stencil that gives the boundary tangent.
+constexpr int kTangentStencil = 2;
+
+/** Unit tangent of a chain at vertex i from the vertices kTangentStencil away. */
+inline Eigen::Vector3f
+chainTangent (const FrontChain &chain, int i)
+{
+  const int m = static_cast<int> (chain.vertices.size ());
+  for (int reach = std::min (kTangentStencil, m - 1); reach >= 1; --reach)
+  {
+    const int a = chain.closed ? (i - reach + m) % m : std::max (0, i - reach);
+    const int b = chain.closed ? (i + reach) % m : std::min (m - 1, i + reach);
+    const Eigen::Vector3f t = chain.vertices[b].position - chain.vertices[a].position;
+    if (t.norm () > 1e-9f)
+      return t.normalized ();
+  }
+  return Eigen::Vector3f::Zero ();
+}
+}  // namespace detail
+
+template <typename PointT> void
+ElasticSampler<PointT>::setInputCloud (const PointCloudConstPtr &cloud)
+{
+  pcl::PCLBase<PointT>::setInputCloud (cloud);
+  propagation_.setInputCloud (cloud);
+  curvature_signs_.clear ();
+}
+
+template <typename PointT> void
+ElasticSampler<PointT>::setSearchMethod (const SearchPtr &search)
+{
+  propagation_.setSearchMethod (search);
+}
+
+template <typename PointT> bool
+ElasticSampler<PointT>::optimisePosition (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
+                                          Eigen::Vector3f &normal) const
+{
+  Neighbourhood neighbours;
+  Eigen::Vector3f p = position;
+  // Two rounds of "normal, then offset along it" (the paper: enough in practice).
+  for (int round = 0; round < 2; ++round)
+  {
+    propagation_.gatherNeighbourhood (p, neighbours);
+    const SurfaceEstimate e = propagation_.computeNormal (neighbours, p, reference_normal);
+    if (!e.valid)
+      return false;
+    p += e.normal * positionOffset (neighbours, p, e, propagation_.kernel ());  // eq. (8)
+  }
+  propagation_.gatherNeighbourhood (p, neighbours);
+  const SurfaceEstimate e = propagation_.computeNormal (neighbours, p, reference_normal);
+  if (!e.valid || !p.allFinite ())
+    return false;
+  position = p;
+  normal = e.normal;
+  return true;
+}
+
+template <typename PointT> int
+ElasticSampler<PointT>::curvatureSign (int index) const
+{
+  if (static_cast<std::size_t> (index) >= curvature_signs_.size ())
+    curvature_signs_.resize (input_->size (), 2);
+  signed char &sign = curvature_signs_[index];
+  if (sign != 2)
+    return sign;
+  const PointT &q = (*input_)[index];
+  const Eigen::Vector3f centre = q.getVector3fMap ();
+  const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
+  Neighbourhood neighbours;
+  propagation_.gatherNeighbourhood (centre, neighbours);
+  float total = 0.f, offset = 0.f;
+  for (std::size_t i = 0; i < neighbours.size (); ++i)
+  {
+    const Eigen::Vector3f d = neighbours.positions[i] - centre;
+    const float w = propagation_.kernel ().spatial (d.squaredNorm ());
+    offset += w * d.dot (normal);
+    total += w;
+  }
+  const float mean = total > 0.f ? offset / total : 0.f;
+  sign = mean < -tolerance_ ? 1 : (mean > tolerance_ ? -1 : 0);
+  return sign;
+}
+
+template <typename PointT> bool
+ElasticSampler<PointT>::overshoots (const Eigen::Vector3f &position) const
+{
+  PointT query;
+  query.getVector3fMap () = position;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  propagation_.getSearchMethod ()->radiusSearch (query, propagation_.getRadius (), found, sqr_distances);
+  for (const auto i : found)
+  {
+    const int sign = curvatureSign (i);
+    if (sign == 0)
+      continue;
+    const PointT &q = (*input_)[i];
+    const float height = (position - q.getVector3fMap ()).dot (q.getNormalVector3fMap ().normalized ());
+    if ((sign > 0 && height > tolerance_) || (sign < 0 && height < -tolerance_))
+      return true;
+  }
+  return false;
+}
+
+template <typename PointT> typename ElasticSampler<PointT>::Verdict
+ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
+                               Eigen::Vector3f &normal) const
+{
+  if (!optimisePosition (position, reference_normal, normal))
+    return Verdict::kUnsupported;
+  if (bound_radius_ > 0.f && (position - bound_centre_).norm () > bound_radius_)
+    return Verdict::kUnsupported;
+  PointT query;
+  query.getVector3fMap () = position;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  propagation_.getSearchMethod ()->radiusSearch (query, detail::kDuplicateReach * equilibrium_distance_, found,
+                                                  sqr_distances, 1);
+  if (!found.empty ())
+    return Verdict::kTooClose;
+  if (combination_constraint_ && overshoots (position))
+    return Verdict::kOvershoot;
+  return Verdict::kKept;
+}
+
+template <typename PointT> bool
+ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionStats &stats)
+{
+  next.clear ();
+  stats = ContractionStats ();
+  if (!propagation_.checkParameters ("ElasticSampler::contract"))
+    return false;
+  if (!(equilibrium_distance_ > 0.f && std::isfinite (equilibrium_distance_)) ||
+      !(tolerance_ >= 0.f && std::isfinite (tolerance_)))
+  {
+    PCL_ERROR ("[pcl_holefill::ElasticSampler::contract] Invalid parameters: equilibrium distance = %g (> 0), "
+               "constraint tolerance = %g (>= 0).\n", equilibrium_distance_, tolerance_);
+    return false;
+  }
+  const float d_eq = equilibrium_distance_;
+  curvature_signs_.resize (input_->size (), 2);
+
+  // Every former boundary point: the sources of the elastic force and of the reference normals.
+  PointGrid former_grid (d_eq);
+  std::vector<const FrontVertex *> former_vertices;
+  for (const auto &chain : former)
+    for (const auto &v : chain.vertices)
+    {
+      former_grid.insert (v.position, static_cast<int> (former_vertices.size ()));
+      former_vertices.push_back (&v);
+    }
+  // The samples of this pass, so that two pieces of C never sample the same spot.
+  PointGrid sample_grid (d_eq);
+  std::size_t sample_count = 0;
+
+  std::vector<PointGrid::Neighbour> near;
+  auto count = [&stats] (Verdict v) {
+    switch (v)
+    {
+    case Verdict::kRepelled: ++stats.repelled; break;
+    case Verdict::kTooClose: ++stats.too_close; break;
+    case Verdict::kOvershoot: ++stats.rejected_by_constraint; break;
+    case Verdict::kUnsupported: ++stats.unsupported; break;
+    case Verdict::kKept: break;
+    }
+  };
+
+  int base = 0;  // id in former_grid of the chain's first vertex
+  Neighbourhood neighbours;
+  for (const auto &chain : former)
+  {
+    const int m = static_cast<int> (chain.vertices.size ());
+    stats.former_boundary_points += m;
+    if (m < 2)
+    {
+      base += m;
+      continue;
+    }
+    // 1. Contracting directions n x t, one inward sign for the whole chain.
+    std::vector<Eigen::Vector3f> directions (m);
+    float vote = 0.f;
+    for (int i = 0; i < m; ++i)
+    {
+      const FrontVertex &v = chain.vertices[i];
+      directions[i] = v.normal.cross (detail::chainTangent (chain, i));
+      if (directions[i].norm () > 1e-6f)
+        directions[i].normalize ();
+      else
+        directions[i].setZero ();
+      propagation_.gatherNeighbourhood (v.position, neighbours);
+      if (neighbours.size () == 0)
+        continue;
+      Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
+      for (const auto &p : neighbours.positions)
+        mean += p;
+      mean /= static_cast<float> (neighbours.size ());
+      const float side = directions[i].dot (v.position - mean);
+      vote += side > 0.f ? 1.f : (side < 0.f ? -1.f : 0.f);
+    }
+    if (vote < 0.f)
+      for (auto &d : directions)
+        d = -d;
+
+    // 2-3. Control points at the equilibrium distance, optimised and checked.
+    std::vector<FrontVertex> controls;
+    for (int i = 0; i < m; ++i)
+    {
+      if (directions[i].isZero ())
+      {
+        ++stats.unsupported;
+        continue;
+      }
+      FrontVertex c{chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
+      Verdict verdict = place (c.position, chain.vertices[i].normal, c.normal);
+      if (verdict == Verdict::kKept)
+      {
+        former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, near);
+        if (std::any_of (near.begin (), near.end (), [&] (const auto &q) { return q.id != base + i; }))
+          verdict = Verdict::kRepelled;
+      }
+      count (verdict);
+      if (verdict == Verdict::kKept)
+        controls.push_back (c);
+    }
+    base += m;
+    stats.kept_control_points += controls.size ();
+    if (controls.empty ())
+      continue;
+
+    // 4. The control curve: kept control points in order, cut where they are far apart.
+    std::vector<std::vector<FrontVertex>> runs (1);
+    for (std::size_t k = 0; k < controls.size (); ++k)
+    {
+      if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > detail::kChainBreak * d_eq)
+        runs.emplace_back ();
+      runs.back ().push_back (controls[k]);
+    }
+    bool wraps = chain.closed && controls.size () > 2 &&
+                 (controls.front ().position - controls.back ().position).norm () <= detail::kChainBreak * d_eq;
+    if (wraps && runs.size () > 1)
+    {
+      // The last run continues into the first across the loop's start.
+      runs.back ().insert (runs.back ().end (), runs.front ().begin (), runs.front ().end ());
+      runs.erase (runs.begin ());
+      wraps = false;
+    }
+
+    // 5. Samples every d_eq along each run.
+    for (const auto &run : runs)
+    {
+      const bool closed_run = wraps;
+      std::vector<float> arc (run.size () + 1, 0.f);
+      const std::size_t segments = closed_run ? run.size () : run.size () - 1;
+      for (std::size_t k = 0; k < segments; ++k)
+        arc[k + 1] = arc[k] + (run[(k + 1) % run.size ()].position - run[k].position).norm ();
+      const float length = arc[segments];
+      // Stop half a step before the start of a closed run, include the end of an open one.
+      std::vector<float> stations;
+      const float last = closed_run ? length - 0.5f * d_eq : length;
+      for (float s = 0.f; s <= last + 1e-6f && stations.size () <= run.size () * 4 + 4; s += d_eq)
+        stations.push_back (s);
+      if (!closed_run && length - stations.back () > 0.5f * d_eq)
+        stations.push_back (length);
+
+      FrontChain out;
+      bool broken = false;
+      std::size_t segment = 0;
+      for (const float s : stations)
+      {
+        while (segment + 1 < segments && arc[segment + 1] < s)
+          ++segment;
+        const FrontVertex &a = run[segment % run.size ()];
+        const FrontVertex &b = run[(segment + 1) % run.size ()];
+        const float span = arc[segment + 1] - arc[segment];
+        const float t = segments == 0 || span <= 0.f ? 0.f : std::clamp ((s - arc[segment]) / span, 0.f, 1.f);
+        FrontVertex sample{(1.f - t) * a.position + t * b.position, Eigen::Vector3f::Zero ()};
+        former_grid.nearestK (sample.position, 1, near);
+        const Eigen::Vector3f reference = near.empty () ? a.normal : former_vertices[near[0].id]->normal;
+        Verdict verdict = place (sample.position, reference, sample.normal);
+        if (verdict == Verdict::kKept)
+        {
+          sample_grid.withinRadius (sample.position, detail::kDuplicateReach * d_eq, near);
+          if (!near.empty ())
+            verdict = Verdict::kTooClose;
+        }
+        if (verdict != Verdict::kKept)
+          continue;
+        if (!out.vertices.empty () &&
+            (sample.position - out.vertices.back ().position).norm () > detail::kChainBreak * d_eq)
+        {
+          next.push_back (out);
+          out.vertices.clear ();
+          broken = true;
+        }
+        sample_grid.insert (sample.position, static_cast<int> (sample_count++));
+        out.vertices.push_back (sample);
+      }
+      out.closed = closed_run && !broken && out.vertices.size () > 2 &&
+                   (out.vertices.front ().position - out.vertices.back ().position).norm () <=
+                       detail::kChainBreak * d_eq;
+      if (!out.vertices.empty ())
+        next.push_back (out);
+    }
+  }
+  stats.samples = frontSize (next);
+  return true;
+}
+
+}  // namespace pcl_holefill
+
+#define PCL_INSTANTIATE_ElasticSampler(T) template class pcl_holefill::ElasticSampler<T>;

@@ -1,0 +1,316 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/bilateral_preprocessor.h>
+#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/hole_filling.h>
+#include <pcl_holefill/impl/bilateral_preprocessor.hpp>
+#include <pcl_holefill/impl/elastic_sampler.hpp>
+#include <pcl_holefill/impl/hole_boundary_estimation.hpp>
+#include <pcl_holefill/impl/voxel_hash_search.hpp>
+#include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/thread_count.h>
+#include <pcl_holefill/voxel_hash_search.h>
+
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace pcl_holefill
+{
+namespace detail
+{
+// A boundary longer than this many times its first length is diverging.
+constexpr float kDivergenceGrowth = 1.5f;
+// The fill of a hole stays inside the ball around its rim's centroid of
+// radius kBoundScale x (rim radius) + 2 d_eq: a runaway front is cut there.
+constexpr float kBoundScale = 1.5f;
+// Tolerance of the combination constraint, in mean spacings.
+constexpr float kToleranceInSpacings = 0.1f;
+}  // namespace detail
+
+template <typename PointT> bool
+HoleFilling<PointT>::checkParameters () const
+{
+  auto non_negative = [] (float v) { return v >= 0.f && std::isfinite (v); };
+  const char *bad = nullptr;
+  if (!non_negative (radius_))
+    bad = "radius (>= 0, 0 = automatic)";
+  else if (!(shrink_ >= 1.f && std::isfinite (shrink_)))
+    bad = "radius shrink factor (>= 1)";
+  else if (!non_negative (sigma_d_))
+    bad = "sigma_d (>= 0, 0 = automatic)";
+  else if (!(sigma_n_ > 0.f))  // kSup (infinity) is allowed, NaN is not
+    bad = "sigma_n (> 0, or kSup)";
+  else if (!non_negative (sigma_r_))
+    bad = "sigma_r (>= 0, 0 = automatic)";
+  else if (!(spacing_factor_ >= 0.25f && spacing_factor_ <= 10.f))
+    bad = "spacing factor (0.25..10)";
+  else if (!(termination_ratio_ >= 0.f && termination_ratio_ < 1.f))
+    bad = "termination ratio (0..1)";
+  else if (max_passes_ < 1 || max_passes_ > 100000)
+    bad = "max passes (1..100000)";
+  else if (!non_negative (max_hole_diameter_))
+    bad = "max hole diameter (>= 0, 0 = no limit)";
+  if (bad)
+  {
+    PCL_ERROR ("[pcl_holefill::HoleFilling] Invalid parameter: %s. Nothing filtered.\n", bad);
+    return false;
+  }
+  return true;
+}
+
+template <typename PointT> bool
+HoleFilling<PointT>::collectHoles (const PointCloudPtr &working, const SearchPtr &search,
+                                   std::vector<BoundaryLoop> &holes) const
+{
+  holes.clear ();
+  if (user_holes_.empty ())
+  {
+    HoleBoundaryEstimation<PointT> estimation;
+    estimation.setInputCloud (working);
+    estimation.setSearchMethod (search);
+    estimation.setMaxHoleDiameter (max_hole_diameter_);
+    estimation.setNumberOfThreads (threads_);
+    std::vector<BoundaryLoop> loops;
+    estimation.compute (loops);
+    for (auto &loop : loops)
+      if (loop.is_hole)
+        holes.push_back (std::move (loop));
+    return true;
+  }
+  // User loops index the input cloud; the working cloud holds the indexed points.
+  std::vector<int> working_of (input_->size (), -1);
+  for (std::size_t i = 0; i < indices_->size (); ++i)
+    working_of[(*indices_)[i]] = static_cast<int> (i);
+  for (const auto &loop : user_holes_)
+  {
+    BoundaryLoop mapped = loop;
+    for (auto &i : mapped.indices)
+    {
+      if (i < 0 || static_cast<std::size_t> (i) >= working_of.size () || working_of[i] < 0)
+      {
+        PCL_ERROR ("[pcl_holefill::HoleFilling] A given hole uses index %d, which is not among the input "
+                   "points (or the indices set). Nothing filtered.\n", static_cast<int> (i));
+        return false;
+      }
+      i = working_of[i];
+    }
+    holes.push_back (std::move (mapped));
+  }
+  return true;
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::applyFilter (PointCloud &output)
+{
+  reports_.clear ();
+  if (!checkParameters ())
+  {
+    output.clear ();
+    return;
+  }
+  PointCloudPtr working (new PointCloud);
+  pcl::copyPointCloud (*input_, *indices_, *working);
+  if (denoise_)
+  {
+    BilateralPreprocessor<PointT> preprocessor;
+    preprocessor.setInputCloud (working);
+    PointCloudPtr denoised (new PointCloud);
+    preprocessor.filter (*denoised);
+    if (denoised->size () == working->size ())
+      working = denoised;
+  }
+  const auto header = output.header;
+  output = *working;  // every point, bit for bit; the fill comes after
+  output.header = header;
+
+  SearchPtr search = search_;
+  if (!search)
+    search.reset (new VoxelHashSearch<PointT> (16));
+  std::vector<BoundaryLoop> holes;
+  if (!collectHoles (working, search, holes))
+  {
+    output.clear ();
+    return;
+  }
+  if (holes.empty ())
+  {
+    PCL_DEBUG ("[pcl_holefill::HoleFilling] No hole to fill: the output is the input.\n");
+    return;
+  }
+  search->setInputCloud (working);
+
+  std::vector<PointCloud> fills (holes.size ());
+  reports_.assign (holes.size (), HoleReport ());
+#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 1)
+  for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
+    fillHole (*working, *search, holes[h], fills[h], reports_[h]);
+
+  for (std::size_t h = 0; h < holes.size (); ++h)
+  {
+    reports_[h].first_output_index = output.size ();
+    reports_[h].points_added = fills[h].size ();
+    for (const auto &p : fills[h])
+      output.push_back (p);
+  }
+  output.width = static_cast<std::uint32_t> (output.size ());
+  output.height = 1;
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<PointT> &search,
+                               const BoundaryLoop &loop, PointCloud &filled, HoleReport &report) const
+{
+  report.boundary_points = loop.indices.size ();
+  report.diameter = loop.diameter;
+  // The rim: usable points only.
+  pcl::Indices rim;
+  for (const auto i : loop.indices)
+    if (i >= 0 && static_cast<std::size_t> (i) < working.size () && isOrientedPoint (working[i]))
+      rim.push_back (i);
+  if (rim.size () < 3)
+  {
+    PCL_WARN ("[pcl_holefill::HoleFilling] A hole has fewer than 3 usable boundary points: skipped.\n");
+    return;
+  }
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  for (const auto i : rim)
+    centroid += working[i].getVector3fMap ();
+  centroid /= static_cast<float> (rim.size ());
+  float rim_radius = 0.f;
+  double spacing_sum = 0.0;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : rim)
+  {
+    rim_radius = std::max (rim_radius, (working[i].getVector3fMap () - centroid).norm ());
+    if (search.nearestKSearch (working[i], 2, found, sqr_distances) == 2)
+      spacing_sum += std::sqrt (sqr_distances[1]);
+  }
+  const float h = static_cast<float> (spacing_sum / rim.size ());
+  if (!(h > 0.f))
+  {
+    PCL_WARN ("[pcl_holefill::HoleFilling] A hole's rim has no spacing (duplicate points?): skipped.\n");
+    return;
+  }
+  const float d_eq = sigma_r_ > 0.f ? ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
+                                    : spacing_factor_ * h;
+  const float radius = radius_ > 0.f ? radius_ : std::max (4.f * h, 2.5f * d_eq);
+  const float min_radius = std::max (2.f * h, 1.5f * d_eq);
+  const float bound = detail::kBoundScale * rim_radius + 2.f * d_eq;
+  report.spacing = h;
+  report.equilibrium_distance = d_eq;
+  report.radius = radius;
+
+  // The hole's surroundings, copied: the fill grows this cloud, never the input.
+  typename PointCloud::Ptr local (new PointCloud);
+  PointT centre;
+  centre.getVector3fMap () = centroid;
+  search.radiusSearch (centre, bound + radius, found, sqr_distances);
+  std::sort (found.begin (), found.end ());  // a deterministic order, whatever the search
+  std::unordered_map<int, int> local_index;
+  for (const auto i : found)
+  {
+    local_index[i] = static_cast<int> (local->size ());
+    local->push_back (working[i]);
+  }
+  const std::size_t input_points = local->size ();
+  typename VoxelHashSearch<PointT>::Ptr local_search (new VoxelHashSearch<PointT>);
+  local_search->setCellSize (0.5f * radius);
+  local_search->setInputCloud (local);
+
+  ElasticSampler<PointT> sampler;
+  sampler.setInputCloud (local);
+  sampler.setSearchMethod (local_search);
+  sampler.setSigmaN (sigma_n_);
+  sampler.setFirstOrder (first_order_);
+  sampler.setEquilibriumDistance (d_eq);
+  sampler.setConstraintTolerance (detail::kToleranceInSpacings * h);
+  sampler.setCombinationConstraint (combination_constraint_);
+  sampler.setBoundingBall (centroid, bound);
+
+  Front front (1);
+  front[0].closed = loop.closed;
+  for (const auto i : rim)
+  {
+    const auto it = local_index.find (i);
+    if (it == local_index.end ())
+      continue;
+    const PointT &p = (*local)[it->second];
+    front[0].vertices.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
+  }
+  const float first_length = frontLength (front);
+
+  ContractionStats stats;
+  float pass_radius = radius;
+  report.termination = Termination::kPassLimit;
+  for (int pass = 0; pass < max_passes_; ++pass)
+  {
+    sampler.setRadius (pass_radius);
+    sampler.setSigmaD (sigma_d_ > 0.f ? sigma_d_ : 0.5f * pass_radius);
+    Front next;
+    if (!sampler.contract (front, next, stats))
+    {
+      report.termination = Termination::kNotStarted;
+      break;
+    }
+    ++report.passes;
+    // B joins the surface: other fields from the nearest known point.
+    for (const auto &chain : next)
+      for (const auto &v : chain.vertices)
+      {
+        PointT query;
+        query.getVector3fMap () = v.position;
+        local_search->nearestKSearch (query, 1, found, sqr_distances);
+        PointT p = found.empty () ? query : (*local)[found[0]];
+        p.getVector3fMap () = v.position;
+        p.getNormalVector3fMap () = v.normal;
+        local->push_back (p);
+      }
+    local_search->indexNewPoints ();
+
+    const float ratio = stats.former_boundary_points > 0
+                            ? static_cast<float> (stats.kept_control_points) / stats.former_boundary_points
+                            : 0.f;
+    if (frontSize (next) < 3)
+    {
+      report.termination = Termination::kNoNewBoundary;
+      break;
+    }
+    if (ratio < termination_ratio_)
+    {
+      report.termination = Termination::kControlRatio;
+      break;
+    }
+    if (frontLength (next) > detail::kDivergenceGrowth * first_length)
+    {
+      report.termination = Termination::kDiverging;
+      break;
+    }
+    front.swap (next);
+    pass_radius = std::max (min_radius, pass_radius / shrink_);
+  }
+  const std::size_t discarded = stats.former_boundary_points - stats.kept_control_points;
+  report.closed = (report.termination == Termination::kControlRatio ||
+                   report.termination == Termination::kNoNewBoundary) &&
+                  2 * (stats.repelled + stats.too_close) >= discarded;
+  if (report.termination == Termination::kDiverging || report.termination == Termination::kPassLimit)
+    PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g stopped after %u passes (%s): it is not closed. "
+              "More than half of the shape may be missing there.\n",
+              loop.diameter, report.passes, toString (report.termination));
+  filled.clear ();
+  for (std::size_t i = input_points; i < local->size (); ++i)
+    filled.push_back ((*local)[i]);
+}
+
+}  // namespace pcl_holefill
+
+#define PCL_INSTANTIATE_HoleFilling(T) template class pcl_holefill::HoleFilling<T>;

@@ -1,0 +1,85 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/normal_propagation.h>
+#include <pcl_holefill/point_validity.h>
+
+#include <pcl/console/print.h>
+
+#include <cmath>
+
+namespace pcl_holefill
+{
+template <typename PointT> bool
+NormalPropagation<PointT>::checkParameters (const char *caller) const
+{
+  const bool sigma_n_ok = kernel_.sigma_n > 0.f;  // kSup (infinity) passes, NaN fails
+  if (!(radius_ > 0.f && std::isfinite (radius_)) || !(kernel_.sigma_d > 0.f && std::isfinite (kernel_.sigma_d)) ||
+      !sigma_n_ok)
+  {
+    PCL_ERROR ("[pcl_holefill::%s] Invalid parameters: radius = %g and sigma_d = %g must be finite and > 0, "
+               "sigma_n = %g must be > 0 (or kSup).\n", caller, radius_, kernel_.sigma_d, kernel_.sigma_n);
+    return false;
+  }
+  if (!input_ || !search_)
+  {
+    PCL_ERROR ("[pcl_holefill::%s] An input cloud and a search method over it are required.\n", caller);
+    return false;
+  }
+  return true;
+}
+
+template <typename PointT> void
+NormalPropagation<PointT>::gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours) const
+{
+  neighbours.clear ();
+  PointT query;
+  query.getVector3fMap () = position;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  search_->radiusSearch (query, radius_, found, sqr_distances);
+  for (const auto i : found)
+  {
+    const PointT &p = (*input_)[i];
+    if (!isOrientedPoint (p))
+      continue;
+    neighbours.positions.push_back (p.getVector3fMap ());
+    neighbours.normals.push_back (p.getNormalVector3fMap ().normalized ());
+  }
+}
+
+template <typename PointT> SurfaceEstimate
+NormalPropagation<PointT>::computeNormal (const Eigen::Vector3f &position,
+                                          const Eigen::Vector3f &reference_normal) const
+{
+  Neighbourhood neighbours;
+  gatherNeighbourhood (position, neighbours);
+  return computeNormal (neighbours, position, reference_normal);
+}
+
+template <typename PointT> bool
+NormalPropagation<PointT>::propagate (PointCloud &candidates, const std::vector<Eigen::Vector3f> &reference_normals)
+{
+  if (!checkParameters ("NormalPropagation::propagate"))
+    return false;
+  if (reference_normals.size () != candidates.size ())
+  {
+    PCL_ERROR ("[pcl_holefill::NormalPropagation::propagate] %zu candidates but %zu reference normals.\n",
+               candidates.size (), reference_normals.size ());
+    return false;
+  }
+  for (std::size_t i = 0; i < candidates.size (); ++i)
+  {
+    const SurfaceEstimate e = computeNormal (candidates[i].getVector3fMap (), reference_normals[i]);
+    candidates[i].getNormalVector3fMap () =
+        e.valid ? e.normal : Eigen::Vector3f::Constant (std::numeric_limits<float>::quiet_NaN ());
+  }
+  return true;
+}
+
+}  // namespace pcl_holefill
+
+#define PCL_INSTANTIATE_NormalPropagation(T) template class pcl_holefill::NormalPropagation<T>;

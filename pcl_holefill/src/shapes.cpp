@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -286,6 +287,60 @@ meanSpacing (const Cloud &cloud)
   }
   return count ? sum / count : 0.0;
 }
+
+template <typename PointT> FillQuality
+evaluateFill (const Shape &shape, const CutCloud &cut, const std::vector<Ball> &balls,
+              const pcl::PointCloud<PointT> &output, double spacing)
+{
+  FillQuality q;
+  const std::size_t kept = cut.kept.size ();
+  q.kept_unchanged = output.size () >= kept;
+  for (std::size_t i = 0; q.kept_unchanged && i < kept; ++i)
+    q.kept_unchanged = std::memcmp (output[i].data, cut.kept[i].data, sizeof (float) * 4) == 0 &&
+                       std::memcmp (output[i].data_n, cut.kept[i].data_n, sizeof (float) * 3) == 0;
+  std::vector<Eigen::Vector3f> positions;
+  for (const auto &p : output)
+    positions.push_back (p.getVector3fMap ());
+  for (std::size_t i = kept; i < output.size (); ++i)
+  {
+    const Eigen::Vector3d p = positions[i].cast<double> ();
+    const double e = shape.distance (p);
+    q.max_error = std::max (q.max_error, e);
+    q.mean_error += e;
+    const bool inside = std::any_of (balls.begin (), balls.end (), [&] (const Ball &b) {
+      return (p - b.centre).norm () <= b.radius + spacing;
+    });
+    q.outside += inside ? 0 : 1;
+  }
+  q.filled = output.size () > kept ? output.size () - kept : 0;
+  q.mean_error = q.filled ? q.mean_error / q.filled : 0.0;
+  if (cut.removed.empty () || positions.empty ())
+  {
+    q.coverage = cut.removed.empty () ? 1.0 : 0.0;
+    return q;
+  }
+  PointGrid grid (PointGrid::suggestCellSize (positions, 8));
+  for (std::size_t i = 0; i < positions.size (); ++i)
+    grid.insert (positions[i], static_cast<int> (i));
+  std::vector<PointGrid::Neighbour> nearest;
+  std::size_t covered = 0;
+  for (const auto &p : cut.removed)
+  {
+    grid.nearestK (p.getVector3fMap (), 1, nearest);
+    const double gap = nearest.empty () ? std::numeric_limits<double>::infinity () : std::sqrt (nearest[0].sqr_distance);
+    q.mean_gap += gap;
+    q.max_gap = std::max (q.max_gap, gap);
+    covered += gap <= 1.5 * spacing ? 1 : 0;
+  }
+  q.mean_gap /= cut.removed.size ();
+  q.coverage = static_cast<double> (covered) / cut.removed.size ();
+  return q;
+}
+
+template FillQuality evaluateFill (const Shape &, const CutCloud &, const std::vector<Ball> &,
+                                   const pcl::PointCloud<pcl::PointNormal> &, double);
+template FillQuality evaluateFill (const Shape &, const CutCloud &, const std::vector<Ball> &,
+                                   const pcl::PointCloud<pcl::PointXYZRGBNormal> &, double);
 
 }  // namespace shapes
 }  // namespace pcl_holefill

@@ -83,5 +83,25 @@ addNormalNoise (Cloud &cloud, double sigma, unsigned seed = 7);
 double
 meanSpacing (const Cloud &cloud);
 
+/** \brief How well a filled cloud repairs a cut (the paper's Table 2 protocol
+  * plus completeness). */
+struct FillQuality
+{
+  std::size_t filled = 0;          //!< points after the kept ones
+  double max_error = 0.0;          //!< filled point to the true surface
+  double mean_error = 0.0;
+  double coverage = 0.0;           //!< share of removed samples within 1.5 spacings of an output point
+  double mean_gap = 0.0;           //!< removed sample to the nearest output point: mean
+  double max_gap = 0.0;            //!< ... and max
+  std::size_t outside = 0;         //!< filled points farther than one spacing outside every ball
+  bool kept_unchanged = false;     //!< the first kept.size() output points equal kept, byte for byte
+};
+
+/** \brief Compares \a output (kept points first, then the fill) with the
+  * truth. \a spacing is the input's mean spacing (meanSpacing of kept). */
+template <typename PointT> FillQuality
+evaluateFill (const Shape &shape, const CutCloud &cut, const std::vector<Ball> &balls,
+              const pcl::PointCloud<PointT> &output, double spacing);
+
 }  // namespace shapes
 }  // namespace pcl_holefill

@@ -12,6 +12,7 @@
 #include <pcl_holefill/impl/elastic_sampler.hpp>
 #include <pcl_holefill/impl/hole_boundary_estimation.hpp>
 #include <pcl_holefill/impl/voxel_hash_search.hpp>
+#include <pcl_holefill/loop_tracing.h>
 #include <pcl_holefill/point_validity.h>
 #include <pcl_holefill/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
@@ -32,6 +33,8 @@ constexpr float kDivergenceGrowth = 1.5f;
 // The fill of a hole stays inside the ball around its rim's centroid of
 // radius kBoundScale x (rim radius) + 2 d_eq: a runaway front is cut there.
 constexpr float kBoundScale = 1.5f;
+// A last boundary narrower than this (in d_eq) has closed onto a point.
+constexpr float kClosedFrontDiameter = 4.f;
 // Tolerance of the combination constraint, in mean spacings.
 constexpr float kToleranceInSpacings = 0.1f;
 }  // namespace detail
@@ -298,10 +301,18 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
     front.swap (next);
     pass_radius = std::max (min_radius, pass_radius / shrink_);
   }
+  // Closed: stopped by the paper's rule, and either the last boundary had
+  // shrunk to a few samples (an apex, a corner) or most of its candidates
+  // were discarded because fronts met (the elastic force, or surface already there).
   const std::size_t discarded = stats.former_boundary_points - stats.kept_control_points;
-  report.closed = (report.termination == Termination::kControlRatio ||
-                   report.termination == Termination::kNoNewBoundary) &&
-                  2 * (stats.repelled + stats.too_close) >= discarded;
+  std::vector<Eigen::Vector3f> last_boundary;
+  for (const auto &chain : front)
+    for (const auto &v : chain.vertices)
+      last_boundary.push_back (v.position);
+  const bool natural_end = report.termination == Termination::kControlRatio ||
+                           report.termination == Termination::kNoNewBoundary;
+  report.closed = natural_end && (2 * (stats.repelled + stats.too_close) >= discarded ||
+                                  loopDiameter (last_boundary) <= detail::kClosedFrontDiameter * d_eq);
   if (report.termination == Termination::kDiverging || report.termination == Termination::kPassLimit)
     PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g stopped after %u passes (%s): it is not closed. "
               "More than half of the shape may be missing there.\n",

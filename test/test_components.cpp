@@ -1,0 +1,138 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/bilateral_preprocessor.h>
+#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/normal_propagation.h>
+#include <pcl_holefill/shapes.h>
+#include <pcl_holefill/voxel_hash_search.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pcl_holefill;
+using Cloud = shapes::Cloud;
+
+namespace
+{
+VoxelHashSearch<pcl::PointNormal>::Ptr
+searchOver (const Cloud::Ptr &cloud)
+{
+  VoxelHashSearch<pcl::PointNormal>::Ptr search (new VoxelHashSearch<pcl::PointNormal>);
+  search->setInputCloud (cloud);
+  return search;
+}
+}  // namespace
+
+TEST (NormalPropagation, SmallSigmaNKeepsToTheReferenceSideOfAnEdge)
+{
+  // At the dihedral's ridge both faces are within r: sigma_n picks the reference's face.
+  Cloud::Ptr cloud (new Cloud (shapes::dihedral ().sample (4000)));
+  NormalPropagation<pcl::PointNormal> propagation;
+  propagation.setInputCloud (cloud);
+  propagation.setSearchMethod (searchOver (cloud));
+  propagation.setRadius (0.08f);
+  propagation.setSigmaD (0.04f);
+  const Eigen::Vector3f left = Eigen::Vector3f (0, -1, 1).normalized ();
+  const Eigen::Vector3f right = Eigen::Vector3f (0, 1, 1).normalized ();
+  const Eigen::Vector3f on_ridge (0.5f, 0.5f, 1.f);
+  propagation.setSigmaN (0.1f);
+  EXPECT_GT (propagation.computeNormal (on_ridge, left).normal.dot (left), 0.999f);
+  EXPECT_GT (propagation.computeNormal (on_ridge, right).normal.dot (right), 0.999f);
+  // Without the constraint both faces speak: the normal bisects the ridge.
+  propagation.setSigmaN (kSup);
+  propagation.setFirstOrder (false);
+  EXPECT_GT (propagation.computeNormal (on_ridge, left).normal.dot (Eigen::Vector3f::UnitZ ()), 0.99f);
+}
+
+TEST (NormalPropagation, FirstOrderContinuesTheCurvatureOfASphere)
+{
+  // Only the southern half is known; the normal at a point above its rim is extrapolated.
+  Cloud full = shapes::sphere ().sample (8000);
+  Cloud::Ptr south (new Cloud);
+  for (const auto &p : full)
+    if (p.z < 0.5f)
+      south->push_back (p);
+  NormalPropagation<pcl::PointNormal> propagation;
+  propagation.setInputCloud (south);
+  propagation.setSearchMethod (searchOver (south));
+  propagation.setRadius (0.1f);
+  propagation.setSigmaD (0.05f);
+  propagation.setSigmaN (kSup);
+  const Eigen::Vector3f truth = Eigen::Vector3f (1.f, 0.f, 0.12f).normalized ();
+  const Eigen::Vector3f above = Eigen::Vector3f::Constant (0.5f) + 0.5f * truth;
+  const Eigen::Vector3f rim_normal = Eigen::Vector3f::UnitX ();
+  const float first = std::acos (propagation.computeNormal (above, rim_normal).normal.dot (truth));
+  propagation.setFirstOrder (false);
+  const float zero = std::acos (propagation.computeNormal (above, rim_normal).normal.dot (truth));
+  EXPECT_LT (first, 0.02f);
+  EXPECT_GT (zero, 3.f * first);
+}
+
+TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
+{
+  const auto cut = shapes::cutHoles (shapes::flatPatch ().sample (6000), {{{0.5, 0.5, 0.5}, 0.2}});
+  Cloud::Ptr cloud (new Cloud (cut.kept));
+  const float h = static_cast<float> (shapes::meanSpacing (cut.kept));
+  // A front on the rim circle, as detection would give it.
+  Front former (1);
+  former[0].closed = true;
+  for (int k = 0; k < 80; ++k)
+  {
+    const float a = 2.f * static_cast<float> (M_PI) * k / 80.f;
+    former[0].vertices.push_back ({Eigen::Vector3f (0.5f + 0.2f * std::cos (a), 0.5f + 0.2f * std::sin (a), 0.5f),
+                                   Eigen::Vector3f::UnitZ ()});
+  }
+  ElasticSampler<pcl::PointNormal> sampler;
+  sampler.setInputCloud (cloud);
+  sampler.setSearchMethod (searchOver (cloud));
+  sampler.setRadius (5.f * h);
+  sampler.setSigmaD (2.5f * h);
+  sampler.setSigmaN (0.1f);
+  sampler.setEquilibriumDistance (1.5f * h);
+  sampler.setConstraintTolerance (0.1f * h);
+  Front next;
+  ContractionStats stats;
+  ASSERT_TRUE (sampler.contract (former, next, stats));
+  EXPECT_EQ (stats.former_boundary_points, 80u);
+  EXPECT_GT (stats.kept_control_points, 70u);
+  ASSERT_EQ (next.size (), 1u);
+  EXPECT_TRUE (next[0].closed);
+  const float ring = 0.2f - 1.5f * h;
+  for (const auto &v : next[0].vertices)
+  {
+    EXPECT_NEAR ((v.position - Eigen::Vector3f (0.5f, 0.5f, 0.5f)).norm (), ring, 0.2f * h);
+    EXPECT_NEAR (v.position.z (), 0.5f, 1e-5f);
+    EXPECT_GT (v.normal.z (), 0.9999f);
+  }
+  // Samples are spaced by d_eq along the new boundary.
+  const float expected = 2.f * static_cast<float> (M_PI) * ring / (1.5f * h);
+  EXPECT_NEAR (static_cast<float> (next[0].vertices.size ()), expected, 0.1f * expected + 1.f);
+  // The paper's eq. (6): sigma_r^2 ln(1e4).
+  EXPECT_NEAR (ElasticSampler<pcl::PointNormal>::equilibriumDistanceFromSigmaR (0.1f), 0.01f * std::log (1e4f), 1e-6f);
+}
+
+TEST (BilateralPreprocessor, DenoisesAPlaneAndKeepsTheRidge)
+{
+  Cloud clean = shapes::dihedral ().sample (6000);
+  Cloud::Ptr noisy (new Cloud (clean));
+  shapes::addNormalNoise (*noisy, 0.004);
+  BilateralPreprocessor<pcl::PointNormal> pre;
+  pre.setInputCloud (noisy);
+  Cloud out;
+  pre.filter (out);
+  ASSERT_EQ (out.size (), noisy->size ());
+  const auto shape = shapes::dihedral ();
+  double before = 0.0, after = 0.0;
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    before += shape.distance ((*noisy)[i].getVector3fMap ().cast<double> ());
+    after += shape.distance (out[i].getVector3fMap ().cast<double> ());
+  }
+  EXPECT_LT (after, 0.6 * before);
+  // Normals stay on their face: the ridge is not rounded.
+  for (std::size_t i = 0; i < out.size (); ++i)
+    EXPECT_GT (out[i].getNormalVector3fMap ().dot (clean[i].getNormalVector3fMap ()), 0.95f);
+}

@@ -11,6 +11,7 @@
 #include <pcl/filters/filter.h>
 #include <pcl/search/search.h>
 
+#include <functional>
 #include <vector>
 
 namespace pcl_holefill
@@ -121,6 +122,12 @@ public:
   void setNumberOfThreads (unsigned int n) { threads_ = n; }
   unsigned int getNumberOfThreads () const { return threads_; }
 
+  /** \brief Called once per hole as soon as it is done (from the thread that
+    * filled it, one call at a time), with its position in the list of holes,
+    * their number and its report: for progress output. */
+  using ProgressCallback = std::function<void (std::size_t hole, std::size_t holes, const HoleReport &report)>;
+  void setProgressCallback (const ProgressCallback &callback) { progress_ = callback; }
+
   /** \brief After filter(): one report per hole, in output order. */
   const std::vector<HoleReport> &getReports () const { return reports_; }
 
@@ -162,6 +169,7 @@ private:
   SearchPtr search_;
   unsigned int threads_ = 0;
   std::vector<HoleReport> reports_;
+  ProgressCallback progress_;
 };
 
 }  // namespace pcl_holefill

@@ -155,12 +155,19 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
   reports_.assign (holes.size (), HoleReport ());
 #pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 1)
   for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
+  {
     fillHole (*working, *search, holes[h], fills[h], reports_[h]);
+    reports_[h].points_added = fills[h].size ();
+    if (progress_)
+    {
+#pragma omp critical(pcl_holefill_progress)
+      progress_ (static_cast<std::size_t> (h), holes.size (), reports_[h]);
+    }
+  }
 
   for (std::size_t h = 0; h < holes.size (); ++h)
   {
     reports_[h].first_output_index = output.size ();
-    reports_[h].points_added = fills[h].size ();
     for (const auto &p : fills[h])
       output.push_back (p);
   }

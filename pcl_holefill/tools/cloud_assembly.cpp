@@ -1,0 +1,188 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "cloud_assembly.h"
+
+#include <pcl_holefill/normal_orientation.h>
+#include <pcl_holefill/voxel_hash_search.h>
+
+#include <pcl/common/io.h>
+#include <pcl/conversions.h>
+#include <pcl/features/normal_3d_omp.h>
+#include <pcl/search/kdtree.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace pcl_holefill_tool
+{
+namespace
+{
+bool
+hasFloatField (const pcl::PCLPointCloud2 &cloud, const std::string &name)
+{
+  const int i = pcl::getFieldIndex (cloud, name);
+  return i >= 0 && cloud.fields[i].datatype == pcl::PCLPointField::FLOAT32 && cloud.fields[i].count == 1;
+}
+
+std::uint32_t
+offsetOf (const pcl::PCLPointCloud2 &cloud, const std::string &name)
+{
+  return cloud.fields[pcl::getFieldIndex (cloud, name)].offset;
+}
+
+/** One float field named \a name over \a count points. */
+pcl::PCLPointCloud2
+floatColumn (const std::string &name, const std::vector<float> &values)
+{
+  pcl::PCLPointCloud2 column;
+  pcl::PCLPointField field;
+  field.name = name;
+  field.offset = 0;
+  field.datatype = pcl::PCLPointField::FLOAT32;
+  field.count = 1;
+  column.fields.push_back (field);
+  column.height = 1;
+  column.width = static_cast<std::uint32_t> (values.size ());
+  column.point_step = sizeof (float);
+  column.row_step = column.point_step * column.width;
+  column.is_dense = true;
+  column.data.resize (values.size () * sizeof (float));
+  std::memcpy (column.data.data (), values.data (), column.data.size ());
+  return column;
+}
+}  // namespace
+
+bool
+prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
+              std::string &error)
+{
+  if (!hasFloatField (file_cloud, "x") || !hasFloatField (file_cloud, "y") || !hasFloatField (file_cloud, "z"))
+  {
+    error = "the cloud has no float x, y, z fields";
+    return false;
+  }
+  prepared.fields = file_cloud;
+  // The output gains points: it cannot stay organized.
+  prepared.fields.width = file_cloud.width * file_cloud.height;
+  prepared.fields.height = 1;
+  prepared.fields.row_step = prepared.fields.point_step * prepared.fields.width;
+  prepared.points.reset (new pcl::PointCloud<pcl::PointNormal>);
+  const bool has_normals = hasFloatField (file_cloud, "normal_x") && hasFloatField (file_cloud, "normal_y") &&
+                           hasFloatField (file_cloud, "normal_z");
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  pcl::fromPCLPointCloud2 (file_cloud, xyz);
+  prepared.points->resize (xyz.size ());
+  prepared.finite_points = 0;
+  for (std::size_t i = 0; i < xyz.size (); ++i)
+  {
+    (*prepared.points)[i].getVector3fMap () = xyz[i].getVector3fMap ();
+    prepared.finite_points += std::isfinite (xyz[i].x) && std::isfinite (xyz[i].y) && std::isfinite (xyz[i].z);
+  }
+  if (prepared.finite_points == 0)
+  {
+    error = "the cloud has no finite point";
+    return false;
+  }
+  if (has_normals)
+  {
+    pcl::PointCloud<pcl::Normal> normals;
+    pcl::fromPCLPointCloud2 (file_cloud, normals);
+    for (std::size_t i = 0; i < normals.size (); ++i)
+      (*prepared.points)[i].getNormalVector3fMap () = normals[i].getNormalVector3fMap ();
+    prepared.normals_estimated = false;
+  }
+  else
+  {
+    pcl::PointCloud<pcl::PointXYZ>::Ptr shared (new pcl::PointCloud<pcl::PointXYZ> (xyz));
+    shared->is_dense = prepared.finite_points == xyz.size ();
+    pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation (threads);
+    estimation.setInputCloud (shared);
+    estimation.setSearchMethod (pcl::search::KdTree<pcl::PointXYZ>::Ptr (new pcl::search::KdTree<pcl::PointXYZ>));
+    estimation.setKSearch (16);
+    pcl::PointCloud<pcl::Normal> normals;
+    estimation.compute (normals);
+    for (std::size_t i = 0; i < normals.size (); ++i)
+      (*prepared.points)[i].getNormalVector3fMap () = normals[i].getNormalVector3fMap ();
+    pcl_holefill::orientNormalsConsistently (*prepared.points);
+    for (std::size_t i = 0; i < normals.size (); ++i)
+      normals[i].getNormalVector3fMap () = (*prepared.points)[i].getNormalVector3fMap ();
+    pcl::PCLPointCloud2 normal_fields, merged;
+    pcl::toPCLPointCloud2 (normals, normal_fields);
+    normal_fields.width = prepared.fields.width;
+    normal_fields.height = 1;
+    if (!pcl::concatenateFields (prepared.fields, normal_fields, merged))
+    {
+      error = "could not add the estimated normals to the cloud's fields";
+      return false;
+    }
+    prepared.fields = merged;
+    prepared.normals_estimated = true;
+  }
+  prepared.points->width = static_cast<std::uint32_t> (prepared.points->size ());
+  prepared.points->height = 1;
+  prepared.points->is_dense = prepared.finite_points == prepared.points->size ();
+  return true;
+}
+
+bool
+assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
+                pcl::PCLPointCloud2 &output, std::string &error)
+{
+  const std::size_t input_points = prepared.points->size ();
+  if (filtered.size () < input_points)
+  {
+    error = "the filter lost points";
+    return false;
+  }
+  pcl::PCLPointCloud2 rows = prepared.fields;
+  const std::size_t step = rows.point_step;
+  const std::size_t added = filtered.size () - input_points;
+  rows.data.resize ((input_points + added) * step);
+  // Other fields of a filled point: those of its nearest input point.
+  pcl_holefill::VoxelHashSearch<pcl::PointNormal> search;
+  search.setInputCloud (prepared.points);
+  const std::uint32_t xyz[3] = {offsetOf (rows, "x"), offsetOf (rows, "y"), offsetOf (rows, "z")};
+  const std::uint32_t nxyz[3] = {offsetOf (rows, "normal_x"), offsetOf (rows, "normal_y"), offsetOf (rows, "normal_z")};
+  pcl::Indices nearest;
+  std::vector<float> sqr_distances;
+  for (std::size_t k = 0; k < added; ++k)
+  {
+    const pcl::PointNormal &p = filtered[input_points + k];
+    std::uint8_t *row = rows.data.data () + (input_points + k) * step;
+    if (search.nearestKSearch (p, 1, nearest, sqr_distances) > 0)
+      std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[0]) * step, step);
+    for (int d = 0; d < 3; ++d)
+    {
+      std::memcpy (row + xyz[d], &p.data[d], sizeof (float));
+      std::memcpy (row + nxyz[d], &p.data_n[d], sizeof (float));
+    }
+  }
+  rows.width = static_cast<std::uint32_t> (input_points + added);
+  rows.height = 1;
+  rows.row_step = static_cast<std::uint32_t> (step * rows.width);
+  std::vector<float> marks (rows.width, 0.f);
+  std::fill (marks.begin () + input_points, marks.end (), 1.f);
+  const int existing = pcl::getFieldIndex (rows, "filled");
+  if (existing >= 0)
+  {
+    if (rows.fields[existing].datatype != pcl::PCLPointField::FLOAT32)
+    {
+      error = "the input has a field 'filled' that is not a float";
+      return false;
+    }
+    for (std::size_t i = 0; i < rows.width; ++i)
+      std::memcpy (rows.data.data () + i * step + rows.fields[existing].offset, &marks[i], sizeof (float));
+    output = rows;
+    return true;
+  }
+  if (!pcl::concatenateFields (rows, floatColumn ("filled", marks), output))
+  {
+    error = "could not add the 'filled' field";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace pcl_holefill_tool

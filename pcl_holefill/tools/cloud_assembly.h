@@ -1,0 +1,38 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <string>
+
+namespace pcl_holefill_tool
+{
+/** \brief A file's cloud as the library sees it, next to the file's own fields. */
+struct PreparedCloud
+{
+  pcl::PCLPointCloud2 fields;                              //!< every field of the file (+ normals if estimated)
+  pcl::PointCloud<pcl::PointNormal>::Ptr points;           //!< xyz and normals, same order
+  bool normals_estimated = false;
+  std::size_t finite_points = 0;
+};
+
+/** \brief Checks the file's fields, takes its normals or estimates them (PCL
+  * NormalEstimationOMP, k = 16, then consistently oriented). */
+bool
+prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
+              std::string &error);
+
+/** \brief The output file: the input rows unchanged, then one row per filled
+  * point (its other fields copied from the nearest input point), and a
+  * field "filled" (1 for filled points, 0 for the input). \a filtered is the
+  * filter's output: the input points, then the fill. */
+bool
+assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
+                pcl::PCLPointCloud2 &output, std::string &error);
+
+}  // namespace pcl_holefill_tool

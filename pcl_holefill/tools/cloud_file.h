@@ -1,0 +1,26 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/PCLPointCloud2.h>
+
+#include <string>
+
+namespace pcl_holefill_tool
+{
+/** \brief "pcd" or "ply" from a file name (case-insensitive), or "" for anything else. */
+std::string
+cloudFormat (const std::string &path);
+
+/** \brief Reads a PCD or PLY file with all its fields. On failure returns
+  * false and puts a one-line reason in \a error; never throws. */
+bool
+loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error);
+
+/** \brief Writes binary PCD or PLY by the file's extension. */
+bool
+saveCloud (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string &error);
+
+}  // namespace pcl_holefill_tool

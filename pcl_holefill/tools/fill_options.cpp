@@ -1,0 +1,252 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "fill_options.h"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace pcl_holefill_tool
+{
+namespace
+{
+bool
+toFloat (const std::string &text, float &value)
+{
+  std::istringstream in (text);
+  in >> value;
+  return !in.fail () && in.eof () && std::isfinite (value);
+}
+
+bool
+toInt (const std::string &text, int &value)
+{
+  std::istringstream in (text);
+  in >> value;
+  return !in.fail () && in.eof ();
+}
+
+struct FloatOption
+{
+  float Options::*field;
+  float low, high;  // inclusive range
+};
+}  // namespace
+
+std::string
+usage (const char *program)
+{
+  std::ostringstream out;
+  out << "Usage: " << program << " input.{pcd,ply} output.{pcd,ply} [options]\n"
+      << "       " << program << " -demo DIR\n\n"
+      << "Fills the holes of an oriented point cloud (Shape controllable geometry completion).\n"
+      << "Input points are written unchanged, then the filled points, which have the field\n"
+      << "'filled' = 1 (0 for input points) and the other fields of their nearest input point.\n"
+      << "A cloud without normals gets them estimated (k = 16) and oriented. Lengths are in the\n"
+      << "cloud's units; 0 means derived from the point spacing h around each hole.\n\n"
+      << "Options (default):\n"
+      << "  -radius R         neighbourhood radius r of eq. (1),(7); 0 = max(4h, 2.5 d_eq)   (0)\n"
+      << "  -sigma_n S|sup    normal dissimilarity std (no unit); small = sharp edges,\n"
+      << "                    'sup' = off, round patches                                   (0.1)\n"
+      << "  -sigma_r S        elastic force width; spacing of new points d_eq = S^2 ln(1e4);\n"
+      << "                    0 = d_eq from -spacing                                         (0)\n"
+      << "  -spacing F        d_eq = F x h when sigma_r is 0 (0.25..10)                       (1.5)\n"
+      << "  -sigma_d S        distance weight std; 0 = r/2                                   (0)\n"
+      << "  -shrink F         r <- r/F after each pass (>= 1; the paper's 1.1)               (1)\n"
+      << "  -ratio T          stop a hole when kept control points / boundary points < T   (0.3)\n"
+      << "  -max_passes N     bound on passes per hole (1..100000)                           (200)\n"
+      << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
+      << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
+      << "  -max_hole_size D  leave holes wider than D alone; 0 = fill all                  (0)\n"
+      << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
+      << "                    the detected holes\n"
+      << "  -report FILE      per-hole report as JSON\n"
+      << "  -png FILE         a picture: the result from two sides, filled points in orange\n"
+      << "  -threads N        0 = all cores                                                  (0)\n"
+      << "  -q                quiet: no progress or notes on stderr\n"
+      << "  -demo DIR         run the built-in demo (cube corner, sphere cap) into DIR\n"
+      << "  -h                this text\n";
+  return out.str ();
+}
+
+bool
+parseOptions (int argc, char **argv, Options &options, std::string &error)
+{
+  const std::map<std::string, FloatOption> floats{
+      {"-radius", {&Options::radius, 0.f, 1e30f}},       {"-sigma_r", {&Options::sigma_r, 0.f, 1e30f}},
+      {"-sigma_d", {&Options::sigma_d, 0.f, 1e30f}},     {"-shrink", {&Options::shrink, 1.f, 100.f}},
+      {"-ratio", {&Options::ratio, 0.f, 0.999f}},        {"-spacing", {&Options::spacing, 0.25f, 10.f}},
+      {"-max_hole_size", {&Options::max_hole_size, 0.f, 1e30f}},
+  };
+  const std::map<std::string, std::string Options::*> strings{
+      {"-holes", &Options::holes_file}, {"-report", &Options::report_file},
+      {"-png", &Options::png_file},     {"-demo", &Options::demo_dir},
+  };
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto value = [&] (std::string &out) {
+      if (i + 1 >= argc)
+      {
+        error = "option " + arg + " needs a value";
+        return false;
+      }
+      out = argv[++i];
+      return true;
+    };
+    std::string text;
+    if (arg == "-h" || arg == "--help")
+      options.help = true;
+    else if (arg == "-q")
+      options.quiet = true;
+    else if (arg == "-denoise")
+      options.denoise = true;
+    else if (arg == "-zero_order")
+      options.zero_order = true;
+    else if (arg == "-sigma_n")
+    {
+      if (!value (text))
+        return false;
+      if (text == "sup" || text == "Sup" || text == "inf")
+        options.sigma_n = pcl_holefill::kSup;
+      else if (!toFloat (text, options.sigma_n) || !(options.sigma_n > 0.f))
+      {
+        error = "-sigma_n takes a number > 0 or 'sup', not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg == "-max_passes" || arg == "-threads")
+    {
+      int n = 0;
+      if (!value (text))
+        return false;
+      const bool passes = arg == "-max_passes";
+      if (!toInt (text, n) || (passes ? (n < 1 || n > 100000) : (n < 0 || n > 1024)))
+      {
+        error = arg + (passes ? " takes a whole number from 1 to 100000" : " takes a whole number from 0 to 1024") +
+                ", not '" + text + "'";
+        return false;
+      }
+      (passes ? options.max_passes : options.threads) = n;
+    }
+    else if (floats.count (arg))
+    {
+      const FloatOption &f = floats.at (arg);
+      float v = 0.f;
+      if (!value (text))
+        return false;
+      if (!toFloat (text, v) || v < f.low || v > f.high)
+      {
+        std::ostringstream why;
+        why << arg << " takes a number from " << f.low << (f.high < 1e29f ? " to " + std::to_string (f.high) : " up")
+            << ", not '" << text << "'";
+        error = why.str ();
+        return false;
+      }
+      options.*(f.field) = v;
+    }
+    else if (strings.count (arg))
+    {
+      if (!value (options.*(strings.at (arg))))
+        return false;
+    }
+    else if (!arg.empty () && arg[0] == '-' && arg.size () > 1)
+    {
+      error = "unknown option " + arg + " (see -h)";
+      return false;
+    }
+    else
+      positional.push_back (arg);
+  }
+  if (options.help)
+    return true;
+  if (!options.demo_dir.empty ())
+  {
+    if (!positional.empty ())
+    {
+      error = "-demo takes no input or output file";
+      return false;
+    }
+    return true;
+  }
+  if (positional.size () != 2)
+  {
+    error = "expected an input and an output file (see -h)";
+    return false;
+  }
+  options.input = positional[0];
+  options.output = positional[1];
+  return true;
+}
+
+void
+configure (const Options &options, pcl_holefill::HoleFilling<pcl::PointNormal> &filler)
+{
+  filler.setRadius (options.radius);
+  filler.setSigmaN (options.sigma_n);
+  filler.setSigmaR (options.sigma_r);
+  filler.setSigmaD (options.sigma_d);
+  filler.setSpacingFactor (options.spacing);
+  filler.setRadiusShrinkFactor (options.shrink);
+  filler.setTerminationRatio (options.ratio);
+  filler.setMaxPasses (options.max_passes);
+  filler.setFirstOrder (!options.zero_order);
+  filler.setDenoise (options.denoise);
+  filler.setMaxHoleDiameter (options.max_hole_size);
+  filler.setNumberOfThreads (static_cast<unsigned int> (options.threads));
+}
+
+bool
+readHoles (const std::string &path, std::size_t cloud_size, std::vector<pcl_holefill::BoundaryLoop> &holes,
+           std::string &error)
+{
+  std::ifstream in (path);
+  if (!in)
+  {
+    error = "cannot read the holes file '" + path + "'";
+    return false;
+  }
+  std::string line;
+  std::size_t line_number = 0;
+  while (std::getline (in, line))
+  {
+    ++line_number;
+    if (line.empty () || line[0] == '#')
+      continue;
+    std::istringstream fields (line);
+    pcl_holefill::BoundaryLoop loop;
+    loop.closed = true;
+    loop.is_hole = true;
+    std::string token;
+    while (fields >> token)
+    {
+      int index = -1;
+      if (!toInt (token, index) || index < 0 || static_cast<std::size_t> (index) >= cloud_size)
+      {
+        error = path + ":" + std::to_string (line_number) + ": '" + token + "' is not a point index (0.." +
+                std::to_string (cloud_size - 1) + ")";
+        return false;
+      }
+      loop.indices.push_back (index);
+    }
+    if (loop.indices.size () < 3)
+    {
+      error = path + ":" + std::to_string (line_number) + ": a loop needs at least 3 points";
+      return false;
+    }
+    holes.push_back (loop);
+  }
+  if (holes.empty ())
+  {
+    error = "the holes file '" + path + "' has no loop";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace pcl_holefill_tool

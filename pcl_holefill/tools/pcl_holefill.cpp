@@ -1,0 +1,129 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The pcl_holefill command: reads a PCD or PLY cloud, fills its holes, writes
+ * the result in the style of PCL's own tools (pcl_mls_smoothing, ...).
+ */
+#include "cloud_assembly.h"
+#include "cloud_file.h"
+#include "demo.h"
+#include "fill_options.h"
+#include "render.h"
+#include "report_json.h"
+
+#include <pcl_holefill/hole_filling.h>
+
+#include <pcl/console/print.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+using namespace pcl_holefill_tool;
+
+namespace
+{
+int
+fail (const std::string &message, int code = 1)
+{
+  std::fprintf (stderr, "pcl_holefill: %s\n", message.c_str ());
+  return code;
+}
+
+bool
+writePicture (const Options &options, const pcl::PointCloud<pcl::PointNormal> &output, std::size_t input_points,
+              std::string &error)
+{
+  std::vector<Splat> splats;
+  for (std::size_t i = 0; i < output.size (); ++i)
+    splats.push_back ({output[i].getVector3fMap (), output[i].getNormalVector3fMap (),
+                       i < input_points ? Eigen::Vector3f (0.78f, 0.78f, 0.8f) : Eigen::Vector3f (1.f, 0.55f, 0.1f)});
+  const Image picture = sideBySide ({renderSplats (splats, Eigen::Vector3f (-1.f, -1.f, -0.8f), 480),
+                                     renderSplats (splats, Eigen::Vector3f (1.f, 1.f, 0.8f), 480)});
+  return savePng (picture, options.png_file, error);
+}
+
+int
+run (const Options &options)
+{
+  const auto start = std::chrono::steady_clock::now ();
+  if (cloudFormat (options.output).empty ())
+    return fail ("unknown file type of '" + options.output + "' (expected .pcd or .ply)");
+  std::string error;
+  pcl::PCLPointCloud2 file_cloud;
+  if (!loadCloud (options.input, file_cloud, error))
+    return fail (error);
+  PreparedCloud prepared;
+  if (!prepareCloud (file_cloud, static_cast<unsigned int> (options.threads), prepared, error))
+    return fail (options.input + ": " + error);
+  if (!options.quiet)
+  {
+    std::fprintf (stderr, "pcl_holefill: %s: %zu points (%zu finite)\n", options.input.c_str (),
+                  prepared.points->size (), prepared.finite_points);
+    if (prepared.normals_estimated)
+      std::fprintf (stderr, "pcl_holefill: note: no normals in the input: estimated (k = 16) and oriented\n");
+  }
+
+  pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+  configure (options, filler);
+  if (!options.holes_file.empty ())
+  {
+    std::vector<pcl_holefill::BoundaryLoop> holes;
+    if (!readHoles (options.holes_file, prepared.points->size (), holes, error))
+      return fail (error);
+    filler.setHoles (holes);
+  }
+  if (!options.quiet)
+    filler.setProgressCallback ([] (std::size_t hole, std::size_t holes, const pcl_holefill::HoleReport &r) {
+      std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s%s\n", hole + 1, holes,
+                    r.passes, r.points_added, pcl_holefill::toString (r.termination), r.closed ? ", closed" : "");
+    });
+  filler.setInputCloud (prepared.points);
+  pcl::PointCloud<pcl::PointNormal> filtered;
+  filler.filter (filtered);
+  if (filtered.size () < prepared.points->size ())
+    return fail ("the parameters were refused (see the message above)");
+  if (filler.getReports ().empty () && !options.quiet)
+    std::fprintf (stderr, "pcl_holefill: note: no hole found: the cloud is copied through\n");
+
+  pcl::PCLPointCloud2 output;
+  if (!assembleOutput (prepared, filtered, output, error))
+    return fail (error);
+  if (!saveCloud (options.output, output, error))
+    return fail (error);
+  if (!options.report_file.empty ())
+  {
+    std::ofstream report (options.report_file);
+    report << reportJson (options.input, prepared.points->size (), filler.getReports ());
+    if (!report)
+      return fail ("cannot write '" + options.report_file + "'");
+  }
+  if (!options.png_file.empty () && !writePicture (options, filtered, prepared.points->size (), error))
+    return fail (error);
+  if (!options.quiet)
+    std::fprintf (stderr, "pcl_holefill: %zu holes, %zu points added, wrote %s in %.2f s\n",
+                  filler.getReports ().size (), filtered.size () - prepared.points->size (), options.output.c_str (),
+                  std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
+  return 0;
+}
+}  // namespace
+
+int
+main (int argc, char **argv)
+{
+  Options options;
+  std::string error;
+  if (!parseOptions (argc, argv, options, error))
+    return fail (error, 2);
+  if (options.help)
+  {
+    std::fputs (usage (argv[0]).c_str (), stdout);
+    return 0;
+  }
+  // The library's own warnings stay; its chatter does not.
+  pcl::console::setVerbosityLevel (options.quiet ? pcl::console::L_ERROR : pcl::console::L_WARN);
+  if (!options.demo_dir.empty ())
+    return runDemo (options.demo_dir, options.quiet);
+  return run (options);
+}

@@ -1,0 +1,52 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "report_json.h"
+
+#include <sstream>
+
+namespace pcl_holefill_tool
+{
+namespace
+{
+std::string
+quoted (const std::string &text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+  {
+    if (c == '"' || c == '\\')
+      out += '\\';
+    if (static_cast<unsigned char> (c) < 0x20)
+      continue;  // control characters have no place in a file name
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+std::string
+reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports)
+{
+  std::size_t filled = 0;
+  for (const auto &r : reports)
+    filled += r.points_added;
+  std::ostringstream out;
+  out << "{\n  \"input\": " << quoted (input) << ",\n  \"input_points\": " << input_points
+      << ",\n  \"filled_points\": " << filled << ",\n  \"holes\": [";
+  for (std::size_t i = 0; i < reports.size (); ++i)
+  {
+    const auto &r = reports[i];
+    out << (i ? "," : "") << "\n    {\"boundary_points\": " << r.boundary_points << ", \"diameter\": " << r.diameter
+        << ", \"passes\": " << r.passes << ", \"points_added\": " << r.points_added
+        << ", \"first_output_index\": " << r.first_output_index << ", \"termination\": \""
+        << pcl_holefill::toString (r.termination) << "\", \"closed\": " << (r.closed ? "true" : "false")
+        << ", \"spacing\": " << r.spacing << ", \"equilibrium_distance\": " << r.equilibrium_distance
+        << ", \"radius\": " << r.radius << "}";
+  }
+  out << (reports.empty () ? "]" : "\n  ]") << "\n}\n";
+  return out.str ();
+}
+
+}  // namespace pcl_holefill_tool

@@ -1,0 +1,18 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/hole_report.h>
+
+#include <string>
+#include <vector>
+
+namespace pcl_holefill_tool
+{
+/** \brief The per-hole reports as a JSON document. */
+std::string
+reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports);
+
+}  // namespace pcl_holefill_tool

@@ -11,45 +11,93 @@
 
 namespace pcl_holefill
 {
-Eigen::Vector3f
-unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &unit_normal,
-                        const Eigen::Vector3f &neighbour_normal)
+namespace
 {
-  const float height = offset.dot (unit_normal);
-  Eigen::Vector3f unfolded = offset - height * unit_normal;
-  // The tangent part of the neighbour's normal points towards the edge on a
-  // convex edge and away from it on a concave one; -height has the matching sign.
-  const Eigen::Vector3f tilt = neighbour_normal - neighbour_normal.dot (unit_normal) * unit_normal;
-  const float tilt_norm = tilt.norm ();
-  if (tilt_norm > 0.2f)
-    unfolded -= height * tilt / tilt_norm;
-  return unfolded;
+/** A number that grows with the angle of the unit 2D vector (x, y) from 0 to
+  * 2 pi, without trigonometry ("diamond angle", 0..4). */
+inline float
+diamondAngle (float x, float y)
+{
+  if (y >= 0.f)
+    return x >= 0.f ? y / (x + y) : 1.f - x / (-x + y);
+  return x < 0.f ? 2.f - y / (-x - y) : 3.f + x / (x - y);
 }
+
+/** A number that grows with the counter-clockwise angle from unit a to unit
+  * b over [0, 2 pi), without trigonometry. */
+inline float
+turnKey (const Eigen::Vector2f &a, const Eigen::Vector2f &b)
+{
+  const float cross = a.x () * b.y () - a.y () * b.x ();
+  const float dot = a.dot (b);
+  return cross >= 0.f ? 1.f - dot : 3.f + dot;
+}
+}  // namespace
 
 AngularGap
 largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
                    const std::vector<Eigen::Vector3f> &neighbours,
                    const std::vector<Eigen::Vector3f> &neighbour_normals)
 {
+  int ids[64];
+  const int count = static_cast<int> (std::min<std::size_t> (neighbours.size (), 64));
+  for (int i = 0; i < count; ++i)
+    ids[i] = i;
+  return largestAngularGap (point, unit_normal, neighbours.data (), neighbour_normals.data (), ids, count);
+}
+
+AngularGap
+largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
+                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids,
+                   int count_given)
+{
   AngularGap gap;
   const Eigen::Vector3f u = unit_normal.unitOrthogonal ();
   const Eigen::Vector3f v = unit_normal.cross (u);
-  float angles[64];
-  Eigen::Vector3f unfolded[64];
-  const std::size_t count_in = std::min<std::size_t> (neighbours.size (), 64);
-  float reach = 0.f;
-  for (std::size_t i = 0; i < count_in; ++i)
+  const int count_in = std::min (count_given, 64);
+  Eigen::Vector2f flat[64];
+  unsigned octants = 0;
+  for (int i = 0; i < count_in; ++i)
   {
-    unfolded[i] = unfoldIntoTangentPlane (neighbours[i] - point, unit_normal, neighbour_normals[i]);
-    reach = std::max (reach, unfolded[i].norm ());
+    const Eigen::Vector3f d = unfoldIntoTangentPlane (positions[ids[i]] - point, unit_normal, unit_normals[ids[i]]);
+    flat[i] = Eigen::Vector2f (d.dot (u), d.dot (v));
+    const float x = flat[i].x (), y = flat[i].y ();
+    octants |= 1u << ((y < 0.f ? 4 : 0) + ((x < 0.f) != (y < 0.f) ? 2 : 0) + (std::abs (x) < std::abs (y) ? 1 : 0));
   }
-  int count = 0;
-  for (std::size_t i = 0; i < count_in; ++i)
+  if (octants == 0xFFu)
   {
-    const float a = unfolded[i].dot (u), b = unfolded[i].dot (v);
-    if (std::hypot (a, b) <= 1e-3f * reach)
-      continue;
-    angles[count++] = std::atan2 (b, a);
+    // Every 45 degree sector holds a neighbour, so no gap reaches 90 degrees:
+    // the common case of an interior point, decided without sorting.
+    gap.angle = static_cast<float> (M_PI / 2.0);
+    gap.direction = u;
+    return gap;
+  }
+  float length[64];
+  float reach = 0.f;
+  for (int i = 0; i < count_in; ++i)
+  {
+    length[i] = flat[i].norm ();
+    reach = std::max (reach, length[i]);
+  }
+  // Directions, sorted by angle (insertion sort: at most 64 of them).
+  Eigen::Vector2f direction[64];
+  float order[64];
+  int count = 0;
+  for (int i = 0; i < count_in; ++i)
+  {
+    if (length[i] <= 1e-3f * reach)
+      continue;  // on the normal line: no direction
+    const Eigen::Vector2f dir = flat[i] / length[i];
+    const float key = diamondAngle (dir.x (), dir.y ());
+    int at = count++;
+    while (at > 0 && order[at - 1] > key)
+    {
+      order[at] = order[at - 1];
+      direction[at] = direction[at - 1];
+      --at;
+    }
+    order[at] = key;
+    direction[at] = dir;
   }
   if (count == 0)
   {
@@ -57,19 +105,28 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
     gap.direction = u;
     return gap;
   }
-  std::sort (angles, angles + count);
-  // The wrap-around gap first, then each consecutive pair.
-  float widest = angles[0] + static_cast<float> (2.0 * M_PI) - angles[count - 1];
-  float start = angles[count - 1];
-  for (int i = 1; i < count; ++i)
-    if (angles[i] - angles[i - 1] > widest)
+  // The widest turn between angularly consecutive directions (the last to the first wraps).
+  int widest_from = count - 1;
+  float widest_key = count == 1 ? 4.f : turnKey (direction[count - 1], direction[0]);
+  for (int i = 0; i + 1 < count; ++i)
+  {
+    const float key = turnKey (direction[i], direction[i + 1]);
+    if (key > widest_key)
     {
-      widest = angles[i] - angles[i - 1];
-      start = angles[i - 1];
+      widest_key = key;
+      widest_from = i;
     }
-  const float middle = start + 0.5f * widest;
-  gap.angle = widest;
-  gap.direction = (std::cos (middle) * u + std::sin (middle) * v).normalized ();
+  }
+  const Eigen::Vector2f &a = direction[widest_from];
+  const Eigen::Vector2f &b = direction[(widest_from + 1) % count];
+  float angle = count == 1 ? static_cast<float> (2.0 * M_PI)
+                           : std::atan2 (a.x () * b.y () - a.y () * b.x (), a.dot (b));
+  if (angle < 0.f)
+    angle += static_cast<float> (2.0 * M_PI);
+  const float half = 0.5f * angle;
+  const Eigen::Vector2f bisector = std::cos (half) * a + std::sin (half) * Eigen::Vector2f (-a.y (), a.x ());
+  gap.angle = angle;
+  gap.direction = (bisector.x () * u + bisector.y () * v).normalized ();
   return gap;
 }
 

@@ -59,6 +59,7 @@ PointGrid::reset (float cell_size)
   inverse_cell_size_ = 1.f / cell_size_;
   size_ = 0;
   cells_.clear ();
+  cell_keys_.clear ();
   table_keys_.assign (64, kEmpty);
   table_cells_.assign (64, -1);
   for (int d = 0; d < 3; ++d)
@@ -116,6 +117,7 @@ PointGrid::findOrAddCell (CellKey key)
     table_keys_[slot] = key;
     table_cells_[slot] = static_cast<int> (cells_.size ());
     cells_.emplace_back ();
+    cell_keys_.push_back (key);
   }
   return table_cells_[slot];
 }
@@ -225,6 +227,75 @@ PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour>
 }
 
 void
+PointGrid::forEachNearestK (int k, int threads,
+                            const std::function<void (int id, const Neighbour *neighbours, int count)> &visit) const
+{
+  if (k <= 0)
+    return;
+  const auto unpack = [] (CellKey key, int shift) {
+    return static_cast<int> ((key >> shift) & 0x1FFFFFULL) - kCoordinateBias;
+  };
+#pragma omp parallel num_threads(std::max (threads, 1))
+  {
+    std::vector<Entry> block;
+    std::vector<Neighbour> candidates;
+    std::vector<Neighbour> fallback;
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cells_.size ()); ++c)
+    {
+      const int cx = unpack (cell_keys_[c], 42), cy = unpack (cell_keys_[c], 21), cz = unpack (cell_keys_[c], 0);
+      block.clear ();
+      for (int ix = cx - 1; ix <= cx + 1; ++ix)
+        for (int iy = cy - 1; iy <= cy + 1; ++iy)
+          for (int iz = cz - 1; iz <= cz + 1; ++iz)
+          {
+            const int cell = findCell (keyOf (ix, iy, iz));
+            if (cell >= 0)
+              block.insert (block.end (), cells_[cell].begin (), cells_[cell].end ());
+          }
+      const float inner = cell_size_ * cell_size_;
+      for (const Entry &self : cells_[c])
+      {
+        // Every point within one cell edge of self lies in the block, so if
+        // at least k + 1 of them (self included) are that near, the k nearest
+        // are among them: select there. The compaction has no branch, which
+        // matters more here than the instruction count.
+        candidates.resize (block.size ());
+        std::size_t near_count = 0;
+        for (const Entry &e : block)
+        {
+          const float dx = e.x - self.x, dy = e.y - self.y, dz = e.z - self.z;
+          const float d2 = dx * dx + dy * dy + dz * dz;
+          candidates[near_count] = {e.id, d2};
+          near_count += d2 <= inner ? 1 : 0;
+        }
+        const Eigen::Vector3f p (self.x, self.y, self.z);
+        if (near_count > static_cast<std::size_t> (k))
+        {
+          candidates.resize (near_count);
+          if (near_count > static_cast<std::size_t> (k) + 1)
+            std::nth_element (candidates.begin (), candidates.begin () + k, candidates.end (), lessByDistance);
+          candidates.resize (k + 1);
+          candidates.erase (std::remove_if (candidates.begin (), candidates.end (),
+                                            [&self] (const Neighbour &n) { return n.id == self.id; }),
+                            candidates.end ());
+          candidates.resize (std::min<std::size_t> (candidates.size (), k));
+          visit (self.id, candidates.data (), static_cast<int> (candidates.size ()));
+          continue;
+        }
+        nearestK (p, k + 1, fallback);
+        fallback.erase (std::remove_if (fallback.begin (), fallback.end (),
+                                        [&self] (const Neighbour &n) { return n.id == self.id; }),
+                        fallback.end ());
+        if (static_cast<int> (fallback.size ()) > k)
+          fallback.resize (k);
+        visit (self.id, fallback.data (), static_cast<int> (fallback.size ()));
+      }
+    }
+  }
+}
+
+void
 PointGrid::withinRadius (const Eigen::Vector3f &query, float radius, std::vector<Neighbour> &result,
                          std::size_t max_results) const
 {
@@ -242,6 +313,41 @@ PointGrid::withinRadius (const Eigen::Vector3f &query, float radius, std::vector
     collectShell (cx, cy, cz, ring, query, sqr, result);
   if (max_results > 0)
     keepNearest (result, max_results);
+}
+
+std::vector<int>
+PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size)
+{
+  // Spread the low 21 bits of v so that two zero bits follow each one.
+  const auto spread = [] (std::uint64_t v) {
+    v &= 0x1FFFFFULL;
+    v = (v | v << 32) & 0x1F00000000FFFFULL;
+    v = (v | v << 16) & 0x1F0000FF0000FFULL;
+    v = (v | v << 8) & 0x100F00F00F00F00FULL;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  PointGrid frame (cell_size);
+  std::vector<std::pair<std::uint64_t, int>> keyed (points.size ());
+  for (std::size_t i = 0; i < points.size (); ++i)
+  {
+    std::uint64_t key = std::numeric_limits<std::uint64_t>::max ();
+    if (points[i].allFinite ())
+    {
+      int c[3];
+      frame.cellCoordinates (points[i], c[0], c[1], c[2]);
+      key = spread (static_cast<std::uint64_t> (c[0] + kCoordinateBias)) |
+            spread (static_cast<std::uint64_t> (c[1] + kCoordinateBias)) << 1 |
+            spread (static_cast<std::uint64_t> (c[2] + kCoordinateBias)) << 2;
+    }
+    keyed[i] = {key, static_cast<int> (i)};
+  }
+  std::sort (keyed.begin (), keyed.end ());
+  std::vector<int> order (points.size ());
+  for (std::size_t i = 0; i < keyed.size (); ++i)
+    order[i] = keyed[i].second;
+  return order;
 }
 
 float
@@ -281,7 +387,7 @@ PointGrid::suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k)
   const float density = static_cast<float> (finite) / std::max (area, 1e-30f);
   // A disc of radius cell holds pi * cell^2 * density points: ask for 2k so
   // that the k nearest are inside the first ring most of the time.
-  const float cell = std::sqrt (2.f * std::max (k, 1) / (3.14159265f * density));
+  const float cell = std::sqrt (1.f * std::max (k, 1) / (3.14159265f * density));
   return std::isfinite (cell) && cell > 0.f ? cell : diagonal;
 }
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <vector>
 
 namespace pcl_holefill
@@ -23,9 +24,20 @@ struct AngularGap
   * more than ~12 degrees apart) the neighbour's height is laid out towards
   * the edge, so it keeps its true distance and lands beyond the edge instead
   * of being squeezed onto it. */
-Eigen::Vector3f
+inline Eigen::Vector3f
 unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &unit_normal,
-                        const Eigen::Vector3f &neighbour_normal);
+                        const Eigen::Vector3f &neighbour_normal)
+{
+  const float height = offset.dot (unit_normal);
+  Eigen::Vector3f unfolded = offset - height * unit_normal;
+  // The tangent part of the neighbour's normal points towards the edge on a
+  // convex edge and away from it on a concave one; -height has the matching sign.
+  const float along = neighbour_normal.dot (unit_normal);
+  const float tilt_sqr = neighbour_normal.squaredNorm () - along * along;
+  if (tilt_sqr > 0.04f)  // |tilt| > 0.2: more than ~12 degrees
+    unfolded -= height * (neighbour_normal - along * unit_normal) / std::sqrt (tilt_sqr);
+  return unfolded;
+}
 
 /** \brief The angular-gap boundary test (as PCL's BoundaryEstimation): the
   * neighbours are projected on the tangent plane of \a point and the largest
@@ -39,10 +51,22 @@ unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &un
   * sliver next to the point and opens false gaps along every edge and corner
   * of a solid (PCL issue #5075). On smooth surfaces the two agree. Neighbours
   * that land on the point itself carry no direction and are ignored. At most
-  * 64 neighbours are used. */
+  * 64 neighbours are used.
+  *
+  * Gaps up to a right angle are not measured: when every 45 degree sector
+  * around the point holds a neighbour (no gap can reach 90 degrees) the
+  * result is pi/2 with an arbitrary direction, decided without sorting, the
+  * common case of an interior point. Wider gaps are exact. */
 AngularGap
 largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
                    const std::vector<Eigen::Vector3f> &neighbours,
                    const std::vector<Eigen::Vector3f> &neighbour_normals);
+
+/** \brief The same test with the neighbours given as \a count indices into
+  * \a positions and \a unit_normals (no copies: the hot path of detection). */
+AngularGap
+largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
+                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids,
+                   int count);
 
 }  // namespace pcl_holefill

@@ -64,7 +64,8 @@ public:
   int
   getKSearch () const { return k_; }
 
-  /** \brief Widest empty sector (radians) a non-rim point may have (default pi/2). */
+  /** \brief Widest empty sector (radians) a non-rim point may have
+    * (pi/2, the default, up to 2 pi). */
   void
   setAngleThreshold (float radians) { angle_threshold_ = radians; }
   float

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_holefill
@@ -47,6 +48,16 @@ public:
   void
   nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour> &result) const;
 
+  /** \brief The \a k nearest neighbours of every stored point (itself
+    * excluded), in no particular order: visit(id, neighbours, count) is called once
+    * per point, from \a threads threads at once, cell by cell. This is a
+    * kNN per point as nearestK() gives it, but each cell's 3x3x3 block is
+    * gathered once for all of its points, and points are visited in spatial
+    * order: several times faster on a whole cloud. */
+  void
+  forEachNearestK (int k, int threads,
+                   const std::function<void (int id, const Neighbour *neighbours, int count)> &visit) const;
+
   /** \brief All points within \a radius of \a query, unordered; at most
     * \a max_results of them when that is > 0 (then the nearest are kept). */
   void
@@ -66,6 +77,13 @@ public:
     * Returns 0 when no finite point is given. */
   static float
   suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k);
+
+  /** \brief A permutation of \a points that visits them cell by cell along a
+    * Morton (Z-order) curve over cells of edge \a cell_size: neighbours in
+    * space become neighbours in memory, which is what makes a pass over a
+    * large cloud fast. Non-finite points come last. Stable. */
+  static std::vector<int>
+  spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size);
 
 private:
   struct Entry
@@ -108,6 +126,7 @@ private:
   std::vector<CellKey> table_keys_;
   std::vector<int> table_cells_;
   std::vector<std::vector<Entry>> cells_;
+  std::vector<CellKey> cell_keys_;  //!< the key of each cell, to find its neighbours
 };
 
 }  // namespace pcl_holefill

@@ -29,12 +29,12 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] The input cloud is empty: no loop.\n", caller);
     return false;
   }
-  if (k_ < 3 || k_ > 64 || !(angle_threshold_ > 0.f && angle_threshold_ < 2.f * M_PI) ||
+  if (k_ < 3 || k_ > 64 || !(angle_threshold_ >= M_PI / 2.0 && angle_threshold_ < 2.f * M_PI) ||
       !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
       !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)))
   {
     PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] Invalid parameters: k = %d (3..64), angle "
-               "threshold = %g (0..2pi), link distance factor = %g (> 0), min loop points = %d (>= 3), "
+               "threshold = %g (pi/2..2pi), link distance factor = %g (> 0), min loop points = %d (>= 3), "
                "max hole diameter = %g (>= 0).\n",
                caller, k_, angle_threshold_, link_factor_, min_loop_points_, max_hole_diameter_);
     return false;
@@ -53,6 +53,17 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
               "no loop.\n", caller, usable_->size (), k_);
     return false;
   }
+  // Work in spatial (Morton) order: the per-point pass then reads memory in order.
+  std::vector<Eigen::Vector3f> unordered;
+  unordered.reserve (usable_->size ());
+  for (const auto i : *usable_)
+    unordered.push_back ((*input_)[i].getVector3fMap ());
+  const float cell = PointGrid::suggestCellSize (unordered, k_);
+  const std::vector<int> order = PointGrid::spatialOrder (unordered, cell);
+  pcl::IndicesPtr ordered (new pcl::Indices (usable_->size ()));
+  for (std::size_t i = 0; i < order.size (); ++i)
+    (*ordered)[i] = (*usable_)[order[i]];
+  usable_ = ordered;
   local_of_.assign (input_->size (), -1);
   positions_.reserve (usable_->size ());
   normals_.reserve (usable_->size ());
@@ -67,7 +78,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     search_->setInputCloud (input_, usable_);
   else
   {
-    grid_.reset (PointGrid::suggestCellSize (positions_, k_));
+    grid_.reset (cell);
     for (std::size_t i = 0; i < positions_.size (); ++i)
       grid_.insert (positions_[i], static_cast<int> (i));
   }
@@ -150,28 +161,42 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
   std::vector<char> on_rim (n, 0);
   std::vector<Eigen::Vector3f> gap_direction (n, Eigen::Vector3f::Zero ());
   nearest_distance_.assign (n, 0.f);
-#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 2048)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
-  {
-    thread_local std::vector<int> ids;
-    thread_local std::vector<float> d2;
-    thread_local std::vector<Eigen::Vector3f> around, around_normals;
-    nearestUsable (static_cast<std::size_t> (i), k_, ids, d2);
-    if (ids.empty ())
-      continue;
-    nearest_distance_[i] = std::sqrt (*std::min_element (d2.begin (), d2.end ()));
-    around.clear ();
-    around_normals.clear ();
-    for (const int j : ids)
-    {
-      around.push_back (positions_[j]);
-      around_normals.push_back (normals_[j]);
-    }
-    const AngularGap gap = largestAngularGap (positions_[i], normals_[i], around, around_normals);
+  auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
+    if (count == 0)
+      return;
+    nearest_distance_[i] = std::sqrt (*std::min_element (d2, d2 + count));
+    const AngularGap gap =
+        largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
     if (gap.angle > angle_threshold_)
     {
       on_rim[i] = 1;
       gap_direction[i] = gap.direction;
+    }
+  };
+  const int threads = resolveThreadCount (threads_);
+  if (!search_)
+  {
+    // The grid's own cell-by-cell kNN: the fast path.
+    grid_.forEachNearestK (k_, threads, [&] (int i, const PointGrid::Neighbour *found, int count) {
+      int ids[64];
+      float d2[64];
+      for (int j = 0; j < count && j < 64; ++j)
+      {
+        ids[j] = found[j].id;
+        d2[j] = found[j].sqr_distance;
+      }
+      test_point (static_cast<std::size_t> (i), ids, d2, std::min (count, 64));
+    });
+  }
+  else
+  {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 2048)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+    {
+      thread_local std::vector<int> ids;
+      thread_local std::vector<float> d2;
+      nearestUsable (static_cast<std::size_t> (i), k_, ids, d2);
+      test_point (static_cast<std::size_t> (i), ids.data (), d2.data (), static_cast<int> (ids.size ()));
     }
   }
   double sum = 0.0;

@@ -79,7 +79,8 @@ HoleFilling<PointT>::collectHoles (const PointCloudPtr &working, const SearchPtr
   {
     HoleBoundaryEstimation<PointT> estimation;
     estimation.setInputCloud (working);
-    estimation.setSearchMethod (search);
+    if (search_)  // the user's; without one, detection's own cell-by-cell pass is faster
+      estimation.setSearchMethod (search);
     estimation.setMaxHoleDiameter (max_hole_diameter_);
     estimation.setNumberOfThreads (threads_);
     std::vector<BoundaryLoop> loops;
@@ -234,7 +235,7 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   }
   const std::size_t input_points = local->size ();
   typename VoxelHashSearch<PointT>::Ptr local_search (new VoxelHashSearch<PointT>);
-  local_search->setCellSize (0.5f * radius);
+  local_search->setCellSize (radius);  // a radius-r query then reads a 3x3x3 block
   local_search->setInputCloud (local);
 
   ElasticSampler<PointT> sampler;

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# pcl_holefill quick start on Debian 12 (run as root, or with sudo available).
+#   ./quickstart.sh demo   install, build, and run the built-in demo (writes demo/)
+#   ./quickstart.sh test   install, build, run the test suite and the downstream package check
+set -euo pipefail
+cd "$(dirname "$0")"
+mode=${1:-}
+case "$mode" in demo|test) ;; *) echo "usage: $0 demo|test" >&2; exit 2 ;; esac
+
+sudo_if_needed() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+packages="cmake g++ make ccache libpcl-dev libeigen3-dev libboost-dev libgtest-dev libpng-dev"
+missing=$(for p in $packages; do dpkg -s "$p" >/dev/null 2>&1 || echo "$p"; done)
+if [ -n "$missing" ]; then
+  echo "== installing:" $missing
+  sudo_if_needed apt-get update -q
+  sudo_if_needed env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $missing
+fi
+
+jobs=$(nproc)
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+echo "== configuring and building (Release, $jobs jobs)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >build.log 2>&1 || { tail -40 build.log; exit 1; }
+cmake --build build -j "$jobs" >>build.log 2>&1 || { grep -E "error|Error" build.log | head -40; exit 1; }
+
+if [ "$mode" = demo ]; then
+  ./build/pcl_holefill/tools/pcl_holefill -demo demo
+  exit 0
+fi
+
+echo "== downstream: find_package(pcl_holefill) from an installed prefix"
+prefix=$(mktemp -d)
+trap 'rm -rf "$prefix"' EXIT
+cmake --install build --prefix "$prefix/install" >/dev/null
+cmake -S test/downstream -B "$prefix/build" -DCMAKE_PREFIX_PATH="$prefix/install" "${launcher[@]}" >"$prefix/log" 2>&1 \
+  || { tail -40 "$prefix/log"; exit 1; }
+cmake --build "$prefix/build" -j "$jobs" >>"$prefix/log" 2>&1 || { tail -40 "$prefix/log"; exit 1; }
+"$prefix/build/downstream"
+
+echo "== test suite"
+ctest --test-dir build --output-on-failure -j "$jobs"

@@ -4,6 +4,8 @@
  */
 #include "cloud_file.h"
 
+#include "file_check.h"
+
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -39,6 +41,8 @@ loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &err
     error = "cannot read '" + path + "'";
     return false;
   }
+  if (!checkCloudFile (path, format, error))
+    return false;
   // PCL's readers print their own complaints; this tool prints one line of its own.
   const auto verbosity = pcl::console::getVerbosityLevel ();
   pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);

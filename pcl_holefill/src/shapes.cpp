@@ -72,6 +72,9 @@ faceDistance (const Face &f, const Eigen::Vector3d &p)
   return best;
 }
 
+// Shapes with at most this many faces are sampled by a jittered grid per face.
+constexpr std::size_t kGridSampledFaces = 64;
+
 pcl::PointNormal
 makePoint (const Eigen::Vector3d &p, const Eigen::Vector3d &n)
 {
@@ -161,10 +164,49 @@ Shape::sample (std::size_t points, unsigned seed) const
       out.push_back (makePoint (centre + radius * d, d));
     }
   }
-  else
+  else if (faces.size () <= kGridSampledFaces)
   {
     for (const auto &f : faces)
       sampleFace (f, spacing, rng, out);
+  }
+  else
+  {
+    // A mesh of many small faces: a grid per face would clump at face
+    // borders, so throw darts by area and keep those at least 0.8 spacing
+    // from every kept one (a maximal Poisson-disk sampling, ~as dense as the grid).
+    std::vector<double> cumulative;
+    double total = 0.0;
+    for (const auto &f : faces)
+      cumulative.push_back (total += faceArea (f));
+    std::uniform_real_distribution<double> unit (0.0, 1.0);
+    const float min_distance = static_cast<float> (0.8 * spacing);
+    PointGrid kept (min_distance);
+    std::vector<PointGrid::Neighbour> near;
+    for (std::size_t dart = 0; dart < 8 * points; ++dart)
+    {
+      const std::size_t f = std::min<std::size_t> (
+          faces.size () - 1, std::lower_bound (cumulative.begin (), cumulative.end (), unit (rng) * total) - cumulative.begin ());
+      // A uniform point of a fan triangle of the (convex) face, by area.
+      const auto &c = faces[f].corners;
+      std::vector<double> fan;
+      double fan_total = 0.0;
+      for (std::size_t k = 1; k + 1 < c.size (); ++k)
+        fan.push_back (fan_total += 0.5 * (c[k] - c[0]).cross (c[k + 1] - c[0]).norm ());
+      const std::size_t t = std::min<std::size_t> (
+          c.size () - 3, std::lower_bound (fan.begin (), fan.end (), unit (rng) * fan_total) - fan.begin ());
+      double a = unit (rng), b = unit (rng);
+      if (a + b > 1.0)
+      {
+        a = 1.0 - a;
+        b = 1.0 - b;
+      }
+      const Eigen::Vector3d p = c[0] + a * (c[t + 1] - c[0]) + b * (c[t + 2] - c[0]);
+      kept.withinRadius (p.cast<float> (), min_distance, near);
+      if (!near.empty ())
+        continue;
+      kept.insert (p.cast<float> (), static_cast<int> (out.size ()));
+      out.push_back (makePoint (p, faceNormal (faces[f])));
+    }
   }
   out.width = static_cast<std::uint32_t> (out.size ());
   out.height = 1;

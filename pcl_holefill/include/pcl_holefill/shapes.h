@@ -42,7 +42,8 @@ struct Shape
   distance (const Eigen::Vector3d &p) const;
 
   /** \brief About \a points samples, evenly spread (a jittered grid on each
-    * face, a jittered Fibonacci lattice on the sphere), exact outward normals. */
+    * face, a jittered Fibonacci lattice on the sphere, a Poisson-disk sampling
+    * on meshes of more than 64 faces), exact outward normals. */
   Cloud
   sample (std::size_t points, unsigned seed = 1) const;
 

@@ -330,6 +330,7 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
   };
   PointGrid frame (cell_size);
   std::vector<std::pair<std::uint64_t, int>> keyed (points.size ());
+  // Within a cell, equal positions end up next to each other (see below).
   for (std::size_t i = 0; i < points.size (); ++i)
   {
     std::uint64_t key = std::numeric_limits<std::uint64_t>::max ();
@@ -343,7 +344,18 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
     }
     keyed[i] = {key, static_cast<int> (i)};
   }
-  std::sort (keyed.begin (), keyed.end ());
+  std::sort (keyed.begin (), keyed.end (), [&points] (const auto &a, const auto &b) {
+    if (a.first != b.first)
+      return a.first < b.first;
+    const Eigen::Vector3f &p = points[a.second], &q = points[b.second];
+    if (p.x () != q.x ())
+      return p.x () < q.x ();
+    if (p.y () != q.y ())
+      return p.y () < q.y ();
+    if (p.z () != q.z ())
+      return p.z () < q.z ();
+    return a.second < b.second;
+  });
   std::vector<int> order (points.size ());
   for (std::size_t i = 0; i < keyed.size (); ++i)
     order[i] = keyed[i].second;

@@ -46,6 +46,10 @@ public:
   int getIterations () const { return iterations_; }
 
   void setSearchMethod (const SearchPtr &search) { search_ = search; }
+
+  /** \brief Threads for the per-point filtering; 0 (default) = all cores. */
+  void setNumberOfThreads (unsigned int n) { threads_ = n; }
+  unsigned int getNumberOfThreads () const { return threads_; }
   SearchPtr getSearchMethod () const { return search_; }
 
 protected:
@@ -61,6 +65,7 @@ private:
   float sigma_n_ = 0.3f;
   int iterations_ = 1;
   SearchPtr search_;
+  unsigned int threads_ = 0;
 };
 
 }  // namespace pcl_holefill

@@ -12,13 +12,26 @@ namespace pcl_holefill
   * PCL's NormalEstimation have an arbitrary sign per point, and the filler
   * needs one side of the surface to be "out").
   *
-  * A breadth-first walk over the k nearest neighbours, from the point highest
+  * A best-first walk over the k nearest neighbours, from the point highest
   * along z in each connected part (its normal is made to point up, i.e. out
   * of a closed object), flips each newly reached normal to agree with the
-  * point it was reached from, visiting the most reliable links (the most
-  * parallel normals) first. Linear in the cloud with a kNN per point.
+  * point it was reached from, following the most reliable links first.
+  * Agreement is the normals' dot product plus a sharp-edge term: across a
+  * convex edge each point lies below the other's tangent plane, across a
+  * concave one above it, so two faces meeting at a right angle (dot 0) still
+  * orient each other. Linear in the cloud with a kNN per point.
   * Points with no usable normal are left alone. Returns how many were flipped. */
 template <typename PointT> std::size_t
 orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k = 12);
 
+/** \brief The share of neighbour pairs (k nearest, on up to \a samples
+  * points spread over the cloud) whose normals point opposite ways (cosine
+  * under -0.5): about 0 for an oriented cloud, about 0.5 for random signs. */
+template <typename PointT> float
+flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k = 8, std::size_t samples = 2000);
+
 }  // namespace pcl_holefill
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_holefill/impl/normal_orientation.hpp>
+#endif

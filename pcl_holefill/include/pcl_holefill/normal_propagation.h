@@ -57,6 +57,12 @@ public:
   float
   getSigmaN () const { return kernel_.sigma_n; }
 
+  /** \brief Threads for propagate(); 0 (default) = all cores. */
+  void
+  setNumberOfThreads (unsigned int n) { threads_ = n; }
+  unsigned int
+  getNumberOfThreads () const { return threads_; }
+
   /** \brief Fit a linear normal field instead of a constant one (default true). */
   void
   setFirstOrder (bool first_order) { first_order_ = first_order; }
@@ -98,6 +104,7 @@ private:
   float radius_ = 0.f;
   BilateralKernel kernel_;
   bool first_order_ = true;
+  unsigned int threads_ = 0;
 };
 
 }  // namespace pcl_holefill

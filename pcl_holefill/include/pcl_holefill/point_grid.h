@@ -81,7 +81,8 @@ public:
   /** \brief A permutation of \a points that visits them cell by cell along a
     * Morton (Z-order) curve over cells of edge \a cell_size: neighbours in
     * space become neighbours in memory, which is what makes a pass over a
-    * large cloud fast. Non-finite points come last. Stable. */
+    * large cloud fast. Non-finite points come last; points at the same
+    * position come one after the other, in index order. */
   static std::vector<int>
   spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size);
 

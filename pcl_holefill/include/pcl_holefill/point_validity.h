@@ -35,4 +35,15 @@ keepOrientedPoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   return indices.size () - kept.size ();
 }
 
+/** \brief True when every index addresses a point of a cloud of \a size
+  * points (PCL's own initCompute does not check). */
+inline bool
+indicesInRange (const pcl::Indices &indices, std::size_t size)
+{
+  for (const auto i : indices)
+    if (i < 0 || static_cast<std::size_t> (i) >= size)
+      return false;
+  return true;
+}
+
 }  // namespace pcl_holefill

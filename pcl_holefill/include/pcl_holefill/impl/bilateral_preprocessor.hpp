@@ -7,6 +7,7 @@
 #include <pcl_holefill/bilateral_preprocessor.h>
 #include <pcl_holefill/local_surface.h>
 #include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/common/io.h>
@@ -57,8 +58,10 @@ BilateralPreprocessor<PointT>::applyFilter (PointCloud &output)
     const BilateralKernel kernel{sigma_d, sigma_n_};
     const double radius = 3.0 * sigma_d;
     PointCloud next = *current;
-    // f1: normals.
-    for (std::size_t i = 0; i < current->size (); ++i)
+    const int threads = resolveThreadCount (threads_);
+    // f1: normals. Each point reads the old cloud and writes its own entry: parallel and deterministic.
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (current->size ()); ++i)
     {
       const PointT &p = (*current)[i];
       if (!isOrientedPoint (p))
@@ -80,7 +83,8 @@ BilateralPreprocessor<PointT>::applyFilter (PointCloud &output)
         next[i].getNormalVector3fMap () = sum.normalized ();
     }
     // f2: positions along the filtered normals.
-    for (std::size_t i = 0; i < current->size (); ++i)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (current->size ()); ++i)
     {
       const PointT &p = next[i];
       if (!isOrientedPoint (p))

@@ -13,6 +13,7 @@
 #include <pcl/console/print.h>
 
 #include <cmath>
+#include <limits>
 
 namespace pcl_holefill
 {
@@ -41,6 +42,13 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   }
   if (!initCompute ())
     return false;
+  if (!indicesInRange (*indices_, input_->size ()))
+  {
+    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] The indices set with setIndices() address points "
+               "outside the cloud (%zu points): no loop.\n", caller, input_->size ());
+    deinitCompute ();
+    return false;
+  }
   usable_.reset (new pcl::Indices);
   const std::size_t skipped = keepOrientedPoints (*input_, *indices_, *usable_);
   deinitCompute ();
@@ -60,9 +68,23 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     unordered.push_back ((*input_)[i].getVector3fMap ());
   const float cell = PointGrid::suggestCellSize (unordered, k_);
   const std::vector<int> order = PointGrid::spatialOrder (unordered, cell);
-  pcl::IndicesPtr ordered (new pcl::Indices (usable_->size ()));
+  // Repeated positions would fill the k nearest with copies of one
+  // neighbour: only the first of each is used (spatialOrder puts them together).
+  pcl::IndicesPtr ordered (new pcl::Indices);
+  ordered->reserve (usable_->size ());
+  std::size_t duplicates = 0;
   for (std::size_t i = 0; i < order.size (); ++i)
-    (*ordered)[i] = (*usable_)[order[i]];
+  {
+    if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
+    {
+      ++duplicates;
+      continue;
+    }
+    ordered->push_back ((*usable_)[order[i]]);
+  }
+  if (duplicates > 0)
+    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
+              "another.\n", caller, duplicates);
   usable_ = ordered;
   local_of_.assign (input_->size (), -1);
   positions_.reserve (usable_->size ());
@@ -164,7 +186,12 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
   auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
     if (count == 0)
       return;
-    nearest_distance_[i] = std::sqrt (*std::min_element (d2, d2 + count));
+    // The nearest distinct neighbour: duplicates say nothing about spacing.
+    float nearest = std::numeric_limits<float>::max ();
+    for (int j = 0; j < count; ++j)
+      if (d2[j] > 0.f)
+        nearest = std::min (nearest, d2[j]);
+    nearest_distance_[i] = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
     const AngularGap gap =
         largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
     if (gap.angle > angle_threshold_)

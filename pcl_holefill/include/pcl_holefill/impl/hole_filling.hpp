@@ -13,6 +13,8 @@
 #include <pcl_holefill/impl/hole_boundary_estimation.hpp>
 #include <pcl_holefill/impl/voxel_hash_search.hpp>
 #include <pcl_holefill/loop_tracing.h>
+#include <pcl_holefill/impl/normal_orientation.hpp>
+#include <pcl_holefill/normal_orientation.h>
 #include <pcl_holefill/point_validity.h>
 #include <pcl_holefill/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
@@ -35,6 +37,8 @@ constexpr float kDivergenceGrowth = 1.5f;
 constexpr float kBoundScale = 1.5f;
 // A last boundary narrower than this (in d_eq) has closed onto a point.
 constexpr float kClosedFrontDiameter = 4.f;
+// More neighbouring normals than this pointing opposite ways: not oriented.
+constexpr float kMaxFlippedShare = 0.02f;
 // Tolerance of the combination constraint, in mean spacings.
 constexpr float kToleranceInSpacings = 0.1f;
 }  // namespace detail
@@ -121,12 +125,26 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     output.clear ();
     return;
   }
+  if (!indicesInRange (*indices_, input_->size ()))
+  {
+    PCL_ERROR ("[pcl_holefill::HoleFilling] The indices set with setIndices() address points outside the "
+               "cloud (%zu points). Nothing filtered.\n", input_->size ());
+    output.clear ();
+    return;
+  }
+  if (indices_->empty ())
+  {
+    PCL_WARN ("[pcl_holefill::HoleFilling] The input is empty: nothing to fill.\n");
+    output.clear ();
+    return;
+  }
   PointCloudPtr working (new PointCloud);
   pcl::copyPointCloud (*input_, *indices_, *working);
   if (denoise_)
   {
     BilateralPreprocessor<PointT> preprocessor;
     preprocessor.setInputCloud (working);
+    preprocessor.setNumberOfThreads (threads_);
     PointCloudPtr denoised (new PointCloud);
     preprocessor.filter (*denoised);
     if (denoised->size () == working->size ())
@@ -135,6 +153,16 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
   const auto header = output.header;
   output = *working;  // every point, bit for bit; the fill comes after
   output.header = header;
+  // Flipped normals would read as sharp edges everywhere: work on an oriented
+  // copy (the output keeps the given normals).
+  const float flipped = flippedNeighbourShare (*working);
+  if (flipped > detail::kMaxFlippedShare)
+  {
+    PCL_WARN ("[pcl_holefill::HoleFilling] %.0f%% of neighbouring normals point opposite ways: the normals are "
+              "not consistently oriented. Filling with a consistently oriented copy.\n", 100.f * flipped);
+    working.reset (new PointCloud (*working));
+    orientNormalsConsistently (*working);
+  }
 
   SearchPtr search = search_;
   if (!search)
@@ -203,8 +231,11 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   for (const auto i : rim)
   {
     rim_radius = std::max (rim_radius, (working[i].getVector3fMap () - centroid).norm ());
-    if (search.nearestKSearch (working[i], 2, found, sqr_distances) == 2)
-      spacing_sum += std::sqrt (sqr_distances[1]);
+    // The nearest distinct neighbour (duplicates say nothing about spacing).
+    search.nearestKSearch (working[i], 8, found, sqr_distances);
+    const auto distinct = std::find_if (sqr_distances.begin (), sqr_distances.end (), [] (float d) { return d > 0.f; });
+    if (distinct != sqr_distances.end ())
+      spacing_sum += std::sqrt (*std::min_element (distinct, sqr_distances.end ()));
   }
   const float h = static_cast<float> (spacing_sum / rim.size ());
   if (!(h > 0.f))

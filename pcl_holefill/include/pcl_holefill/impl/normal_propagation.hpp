@@ -6,6 +6,7 @@
 
 #include <pcl_holefill/normal_propagation.h>
 #include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/thread_count.h>
 
 #include <pcl/console/print.h>
 
@@ -71,7 +72,8 @@ NormalPropagation<PointT>::propagate (PointCloud &candidates, const std::vector<
                candidates.size (), reference_normals.size ());
     return false;
   }
-  for (std::size_t i = 0; i < candidates.size (); ++i)
+#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 256)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (candidates.size ()); ++i)
   {
     const SurfaceEstimate e = computeNormal (candidates[i].getVector3fMap (), reference_normals[i]);
     candidates[i].getNormalVector3fMap () =

@@ -113,6 +113,33 @@ TEST_F (Command, EstimatesNormalsForAPlyWithoutThem)
     EXPECT_LT (shapes::cube ().distance (out[i].getVector3fMap ().cast<double> ()), 0.06);
 }
 
+TEST_F (Command, ReadsEveryPcdAndPlyEncoding)
+{
+  pcl::PointCloud<pcl::PointXYZRGBNormal> coloured;
+  pcl::copyPointCloud (cut_.kept, coloured);
+  for (auto &p : coloured)
+    p.g = 99;
+  ASSERT_EQ (pcl::io::savePCDFileASCII (path ("a.pcd"), coloured), 0);
+  ASSERT_EQ (pcl::io::savePCDFileBinaryCompressed (path ("c.pcd"), coloured), 0);
+  ASSERT_EQ (pcl::io::savePLYFileASCII (path ("a.ply"), coloured), 0);
+  ASSERT_EQ (pcl::io::savePLYFileBinary (path ("b.ply"), coloured), 0);
+  for (const char *name : {"a.pcd", "c.pcd", "a.ply", "b.ply"})
+  {
+    ASSERT_EQ (run (path (name) + " " + path ("out.pcd") + " -q"), 0) << name << ": " << stderrText ();
+    pcl::PointCloud<pcl::PointXYZRGBNormal> out;
+    ASSERT_EQ (pcl::io::loadPCDFile (path ("out.pcd"), out), 0);
+    ASSERT_GT (out.size (), coloured.size ()) << name;
+    for (std::size_t i = 0; i < coloured.size (); i += 101)
+    {
+      EXPECT_NEAR (out[i].x, coloured[i].x, 1e-6f) << name;  // ascii files round to their digits
+      EXPECT_NEAR (out[i].normal_z, coloured[i].normal_z, 1e-6f) << name;
+      EXPECT_EQ (out[i].g, 99) << name;
+    }
+    for (std::size_t i = coloured.size (); i < out.size (); ++i)
+      EXPECT_LT (shapes::cube ().distance (out[i].getVector3fMap ().cast<double> ()), 0.0046) << name;
+  }
+}
+
 TEST_F (Command, BadInputGetsOneLineAndANonZeroExit)
 {
   ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);

@@ -12,6 +12,7 @@
 #include <pcl/features/normal_3d_omp.h>
 #include <pcl/search/kdtree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -58,6 +59,25 @@ bool
 prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
               std::string &error)
 {
+  if (static_cast<std::size_t> (file_cloud.width) * file_cloud.height == 0)
+  {
+    error = "the cloud has no point";
+    return false;
+  }
+  // Every field inside a point, every point inside the data: PCL's
+  // conversions trust both.
+  for (const auto &field : file_cloud.fields)
+    if (static_cast<std::uint64_t> (field.offset) + pcl::getFieldSize (field.datatype) * std::max<std::uint64_t> (field.count, 1) >
+        file_cloud.point_step)
+    {
+      error = "the field '" + field.name + "' lies outside its point";
+      return false;
+    }
+  if (file_cloud.data.size () < static_cast<std::uint64_t> (file_cloud.point_step) * file_cloud.width * file_cloud.height)
+  {
+    error = "the cloud has less data than points";
+    return false;
+  }
   if (!hasFloatField (file_cloud, "x") || !hasFloatField (file_cloud, "y") || !hasFloatField (file_cloud, "z"))
   {
     error = "the cloud has no float x, y, z fields";

@@ -4,15 +4,13 @@
  */
 #include "cloud_file.h"
 
-#include "file_check.h"
+#include "cloud_reader.h"
 
-#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 
 namespace pcl_holefill_tool
 {
@@ -36,38 +34,15 @@ loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &err
     error = "unknown file type of '" + path + "' (expected .pcd or .ply)";
     return false;
   }
-  if (!std::ifstream (path).good ())
-  {
-    error = "cannot read '" + path + "'";
-    return false;
-  }
-  if (!checkCloudFile (path, format, error))
-    return false;
-  // PCL's readers print their own complaints; this tool prints one line of its own.
-  const auto verbosity = pcl::console::getVerbosityLevel ();
-  pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);
-  int status = -1;
   try
   {
-    status = format == "pcd" ? pcl::io::loadPCDFile (path, cloud) : pcl::io::loadPLYFile (path, cloud);
+    return format == "pcd" ? readPcd (path, cloud, error) : readPly (path, cloud, error);
   }
-  catch (const std::exception &e)
+  catch (const std::exception &e)  // allocation failures on absurd sizes
   {
-    status = -1;
-  }
-  pcl::console::setVerbosityLevel (verbosity);
-  if (status < 0)
-  {
-    error = "'" + path + "' is not a readable " + format + " point cloud";
+    error = "'" + path + "': " + e.what ();
     return false;
   }
-  if (cloud.data.size () != static_cast<std::size_t> (cloud.row_step) * cloud.height ||
-      cloud.row_step != cloud.point_step * cloud.width)
-  {
-    error = "'" + path + "' is malformed (its point count does not match its data)";
-    return false;
-  }
-  return true;
 }
 
 bool

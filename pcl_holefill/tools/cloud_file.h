@@ -14,8 +14,9 @@ namespace pcl_holefill_tool
 std::string
 cloudFormat (const std::string &path);
 
-/** \brief Reads a PCD or PLY file with all its fields. On failure returns
-  * false and puts a one-line reason in \a error; never throws. */
+/** \brief Reads a PCD or PLY file with all its fields (cloud_reader.h). On
+  * failure returns false and puts a one-line reason in \a error; never
+  * throws, never crashes on a malformed file. */
 bool
 loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error);
 

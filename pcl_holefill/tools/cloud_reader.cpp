@@ -1,0 +1,606 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "cloud_reader.h"
+
+#include <pcl/common/io.h>
+#include <pcl/io/lzf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace pcl_holefill_tool
+{
+namespace
+{
+constexpr std::size_t kMaxHeader = 64 * 1024;
+constexpr std::uint64_t kMaxPoints = 1ULL << 31;
+constexpr std::uint64_t kMaxBytes = 16ULL << 30;
+
+/** The whole file (bounded by kMaxBytes). */
+bool
+slurp (const std::string &path, std::string &bytes, std::string &error)
+{
+  std::ifstream in (path, std::ios::binary | std::ios::ate);
+  if (!in)
+  {
+    error = "cannot read '" + path + "'";
+    return false;
+  }
+  const auto size = static_cast<std::uint64_t> (in.tellg ());
+  if (size > kMaxBytes)
+  {
+    error = "'" + path + "' is larger than 16 GiB";
+    return false;
+  }
+  bytes.resize (size);
+  in.seekg (0);
+  in.read (bytes.data (), static_cast<std::streamsize> (size));
+  if (!in)
+  {
+    error = "cannot read '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+/** Header lines up to and including the one that starts with \a last_key;
+  * \a body is where the data begins. Printable ASCII only. */
+bool
+splitHeader (const std::string &bytes, const std::string &last_key, std::vector<std::string> &lines,
+             std::size_t &body, std::string &reason)
+{
+  std::size_t at = 0;
+  while (at < bytes.size () && at < kMaxHeader)
+  {
+    std::size_t end = bytes.find ('\n', at);
+    if (end == std::string::npos)
+      end = bytes.size ();
+    std::string line = bytes.substr (at, end - at);
+    if (!line.empty () && line.back () == '\r')
+      line.pop_back ();
+    for (const unsigned char c : line)
+      if ((c < 0x20 && c != '\t') || c > 0x7e)
+      {
+        reason = "the header has bytes that are not printable ASCII";
+        return false;
+      }
+    lines.push_back (line);
+    at = end + 1;
+    if (line.compare (0, last_key.size (), last_key) == 0)
+    {
+      body = std::min (at, bytes.size ());
+      return true;
+    }
+  }
+  reason = "no header end ('" + last_key + "') in the first 64 KiB";
+  return false;
+}
+
+std::vector<std::string>
+words (const std::string &line)
+{
+  std::istringstream in (line);
+  return {std::istream_iterator<std::string> (in), std::istream_iterator<std::string> ()};
+}
+
+bool
+toCount (const std::string &word, std::uint64_t &value)
+{
+  if (word.empty () || word.size () > 12 || word.find_first_not_of ("0123456789") != std::string::npos)
+    return false;
+  value = std::stoull (word);
+  return true;
+}
+
+bool
+plainName (const std::string &name)
+{
+  if (name.empty () || name.size () > 64 || std::isdigit (static_cast<unsigned char> (name[0])))
+    return false;
+  return std::all_of (name.begin (), name.end (), [] (unsigned char c) { return std::isalnum (c) || c == '_'; });
+}
+
+/** A number of an ascii body as the bytes of a field of type \a datatype. */
+bool
+storeNumber (const std::string &word, std::uint8_t datatype, std::uint8_t *out)
+{
+  char *end = nullptr;
+  const double v = std::strtod (word.c_str (), &end);
+  if (end == word.c_str () || *end != '\0')
+    return false;
+  auto put = [out] (auto value) { std::memcpy (out, &value, sizeof (value)); };
+  auto integral = [&v] (double lo, double hi) { return std::isnan (v) ? 0.0 : std::min (hi, std::max (lo, v)); };
+  switch (datatype)
+  {
+  case pcl::PCLPointField::INT8: put (static_cast<std::int8_t> (integral (-128, 127))); break;
+  case pcl::PCLPointField::UINT8: put (static_cast<std::uint8_t> (integral (0, 255))); break;
+  case pcl::PCLPointField::INT16: put (static_cast<std::int16_t> (integral (-32768, 32767))); break;
+  case pcl::PCLPointField::UINT16: put (static_cast<std::uint16_t> (integral (0, 65535))); break;
+  case pcl::PCLPointField::INT32: put (static_cast<std::int32_t> (integral (-2147483648.0, 2147483647.0))); break;
+  case pcl::PCLPointField::UINT32: put (static_cast<std::uint32_t> (integral (0, 4294967295.0))); break;
+  case pcl::PCLPointField::INT64: put (static_cast<std::int64_t> (integral (-9.2e18, 9.2e18))); break;
+  case pcl::PCLPointField::UINT64: put (static_cast<std::uint64_t> (integral (0, 1.8e19))); break;
+  case pcl::PCLPointField::FLOAT32: put (static_cast<float> (v)); break;
+  case pcl::PCLPointField::FLOAT64: put (v); break;
+  default: return false;
+  }
+  return true;
+}
+
+std::uint8_t
+pcdDatatype (const std::string &type, std::uint64_t size)
+{
+  if (type == "F")
+    return size == 4 ? pcl::PCLPointField::FLOAT32 : size == 8 ? pcl::PCLPointField::FLOAT64 : 0;
+  const bool is_signed = type == "I";
+  if (!is_signed && type != "U")
+    return 0;
+  switch (size)
+  {
+  case 1: return is_signed ? pcl::PCLPointField::INT8 : pcl::PCLPointField::UINT8;
+  case 2: return is_signed ? pcl::PCLPointField::INT16 : pcl::PCLPointField::UINT16;
+  case 4: return is_signed ? pcl::PCLPointField::INT32 : pcl::PCLPointField::UINT32;
+  case 8: return is_signed ? pcl::PCLPointField::INT64 : pcl::PCLPointField::UINT64;
+  default: return 0;
+  }
+}
+
+void
+setShape (pcl::PCLPointCloud2 &cloud, std::uint64_t width, std::uint64_t height, std::uint32_t point_step)
+{
+  cloud.width = static_cast<std::uint32_t> (width);
+  cloud.height = static_cast<std::uint32_t> (height);
+  cloud.point_step = point_step;
+  cloud.row_step = static_cast<std::uint32_t> (point_step * width);
+  cloud.is_bigendian = false;
+  cloud.is_dense = false;
+}
+
+bool
+parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+{
+  std::vector<std::string> lines;
+  std::size_t body = 0;
+  if (!splitHeader (bytes, "DATA", lines, body, reason))
+    return false;
+  static const char *const known[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT", "WIDTH",
+                                      "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+  std::map<std::string, std::vector<std::string>> entries;
+  for (const auto &line : lines)
+  {
+    const auto w = words (line);
+    if (w.empty () || w[0][0] == '#')
+      continue;
+    if (std::none_of (std::begin (known), std::end (known), [&w] (const char *k) { return w[0] == k; }))
+    {
+      reason = "unknown header line '" + line.substr (0, 40) + "'";
+      return false;
+    }
+    if (entries.count (w[0]))
+    {
+      reason = w[0] + " given twice";
+      return false;
+    }
+    entries[w[0]].assign (w.begin () + 1, w.end ());
+  }
+  const auto &version = entries["VERSION"];
+  if (version.size () != 1 || (version[0] != ".7" && version[0] != "0.7"))
+  {
+    reason = "VERSION must be 0.7";
+    return false;
+  }
+  const auto &names = entries["FIELDS"], &sizes = entries["SIZE"], &types = entries["TYPE"];
+  auto counts = entries["COUNT"];
+  if (counts.empty ())
+    counts.assign (names.size (), "1");
+  if (names.empty () || sizes.size () != names.size () || types.size () != names.size () ||
+      counts.size () != names.size ())
+  {
+    reason = "FIELDS, SIZE, TYPE and COUNT must name the same fields";
+    return false;
+  }
+  cloud = pcl::PCLPointCloud2 ();
+  std::uint64_t point_step = 0;
+  std::vector<std::uint64_t> field_bytes;  // per FIELDS entry, padding included
+  for (std::size_t i = 0; i < names.size (); ++i)
+  {
+    std::uint64_t size = 0, count = 0;
+    const std::uint8_t datatype = toCount (sizes[i], size) ? pcdDatatype (types[i], size) : 0;
+    if (!datatype || !toCount (counts[i], count) || count == 0 || count > 100000 ||
+        (names[i] != "_" && !plainName (names[i])))
+    {
+      reason = "field '" + names[i].substr (0, 20) + "' has a bad name, SIZE, TYPE or COUNT";
+      return false;
+    }
+    if (names[i] != "_")  // "_" is padding: it takes room but is not a field
+    {
+      pcl::PCLPointField field;
+      field.name = names[i];
+      field.offset = static_cast<std::uint32_t> (point_step);
+      field.datatype = datatype;
+      field.count = static_cast<std::uint32_t> (count);
+      cloud.fields.push_back (field);
+    }
+    field_bytes.push_back (size * count);
+    point_step += size * count;
+  }
+  std::uint64_t width = 0, height = 1, points = 0;
+  const auto &w = entries["WIDTH"], &h = entries["HEIGHT"], &p = entries["POINTS"], &viewpoint = entries["VIEWPOINT"];
+  if (w.size () != 1 || !toCount (w[0], width) || (h.size () == 1 && !toCount (h[0], height)) || h.size () > 1 ||
+      (p.size () == 1 && (!toCount (p[0], points) || points != width * height)) || p.size () > 1 ||
+      width * height > kMaxPoints || (!viewpoint.empty () && viewpoint.size () != 7) || point_step > 1000000)
+  {
+    reason = "WIDTH, HEIGHT, POINTS or VIEWPOINT are missing or disagree";
+    return false;
+  }
+  points = width * height;
+  const auto &data = entries["DATA"];
+  const std::uint64_t available = bytes.size () - body;
+  setShape (cloud, width, height, static_cast<std::uint32_t> (point_step));
+  if (data.size () == 1 && data[0] == "binary")
+  {
+    if (available < points * point_step)
+    {
+      reason = "the file is shorter than the " + std::to_string (points) + " points its header announces";
+      return false;
+    }
+    cloud.data.assign (bytes.begin () + body, bytes.begin () + body + points * point_step);
+    return true;
+  }
+  if (data.size () == 1 && data[0] == "binary_compressed")
+  {
+    std::uint32_t packed[2] = {0, 0};  // compressed, uncompressed
+    if (available < sizeof (packed))
+    {
+      reason = "the compressed data is missing";
+      return false;
+    }
+    std::memcpy (packed, bytes.data () + body, sizeof (packed));
+    if (available - sizeof (packed) < packed[0] || packed[1] != points * point_step)
+    {
+      reason = "the compressed data does not match the header";
+      return false;
+    }
+    std::vector<char> plain (packed[1]);
+    if (packed[1] > 0 &&
+        pcl::lzfDecompress (bytes.data () + body + sizeof (packed), packed[0], plain.data (), packed[1]) != packed[1])
+    {
+      reason = "the compressed data does not decompress";
+      return false;
+    }
+    // Stored field by field (all points' first field, then the second...).
+    cloud.data.resize (points * point_step);
+    std::uint64_t source = 0, offset = 0;
+    for (const std::uint64_t bytes_of_field : field_bytes)
+    {
+      for (std::uint64_t k = 0; k < points; ++k)
+        std::memcpy (cloud.data.data () + k * point_step + offset, plain.data () + source + k * bytes_of_field,
+                     bytes_of_field);
+      source += points * bytes_of_field;
+      offset += bytes_of_field;
+    }
+    return true;
+  }
+  if (data.size () == 1 && data[0] == "ascii")
+  {
+    cloud.data.assign (points * point_step, 0);
+    std::istringstream text (bytes.substr (body));
+    std::string line;
+    for (std::uint64_t k = 0; k < points; ++k)
+    {
+      if (!std::getline (text, line))
+      {
+        reason = "the file has fewer lines than the " + std::to_string (points) + " points its header announces";
+        return false;
+      }
+      const auto values = words (line);
+      std::size_t v = 0;
+      std::uint64_t offset = 0;
+      for (std::size_t f = 0; f < names.size (); ++f)
+      {
+        std::uint64_t size = 0, count = 0;
+        toCount (sizes[f], size);
+        toCount (counts[f], count);
+        for (std::uint64_t c = 0; c < count; ++c, ++v, offset += size)
+          if (v >= values.size () ||
+              !storeNumber (values[v], pcdDatatype (types[f], size), cloud.data.data () + k * point_step + offset))
+          {
+            reason = "point " + std::to_string (k) + " has a missing or malformed value";
+            return false;
+          }
+      }
+    }
+    return true;
+  }
+  reason = "DATA must be ascii, binary or binary_compressed";
+  return false;
+}
+
+struct PlyProperty
+{
+  std::string name;
+  std::uint8_t datatype = 0;  // of the value (or of a list's items)
+  std::uint8_t count_type = 0;  // list length type, 0 for a scalar
+};
+
+std::uint8_t
+plyDatatype (const std::string &type)
+{
+  static const std::map<std::string, std::uint8_t> types{
+      {"char", pcl::PCLPointField::INT8},     {"int8", pcl::PCLPointField::INT8},
+      {"uchar", pcl::PCLPointField::UINT8},   {"uint8", pcl::PCLPointField::UINT8},
+      {"short", pcl::PCLPointField::INT16},   {"int16", pcl::PCLPointField::INT16},
+      {"ushort", pcl::PCLPointField::UINT16}, {"uint16", pcl::PCLPointField::UINT16},
+      {"int", pcl::PCLPointField::INT32},     {"int32", pcl::PCLPointField::INT32},
+      {"uint", pcl::PCLPointField::UINT32},   {"uint32", pcl::PCLPointField::UINT32},
+      {"float", pcl::PCLPointField::FLOAT32}, {"float32", pcl::PCLPointField::FLOAT32},
+      {"double", pcl::PCLPointField::FLOAT64}, {"float64", pcl::PCLPointField::FLOAT64}};
+  const auto it = types.find (type);
+  return it == types.end () ? 0 : it->second;
+}
+
+/** Reads one binary value as a double, swapping bytes for big-endian files. */
+bool
+readBinary (const std::string &bytes, std::size_t &at, std::uint8_t datatype, bool big_endian, double &value)
+{
+  const std::size_t size = pcl::getFieldSize (datatype);
+  if (size == 0 || at + size > bytes.size ())
+    return false;
+  std::uint8_t raw[8];
+  std::memcpy (raw, bytes.data () + at, size);
+  if (big_endian)
+    std::reverse (raw, raw + size);
+  at += size;
+  switch (datatype)
+  {
+  case pcl::PCLPointField::INT8: value = static_cast<std::int8_t> (raw[0]); break;
+  case pcl::PCLPointField::UINT8: value = raw[0]; break;
+  case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy (&v, raw, 2); value = v; break; }
+  case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy (&v, raw, 2); value = v; break; }
+  case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy (&v, raw, 4); value = v; break; }
+  case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy (&v, raw, 4); value = v; break; }
+  case pcl::PCLPointField::FLOAT32: { float v; std::memcpy (&v, raw, 4); value = v; break; }
+  case pcl::PCLPointField::FLOAT64: { std::memcpy (&value, raw, 8); break; }
+  default: return false;
+  }
+  return true;
+}
+
+bool
+parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+{
+  std::vector<std::string> lines;
+  std::size_t body = 0;
+  if (!splitHeader (bytes, "end_header", lines, body, reason))
+    return false;
+  if (lines.empty () || lines[0] != "ply")
+  {
+    reason = "not a PLY file (no 'ply' line)";
+    return false;
+  }
+  std::string format;
+  std::uint64_t vertices = 0;
+  int element = -1;  // index of the current element; only the first (vertex) is read
+  std::vector<PlyProperty> properties;
+  for (std::size_t i = 1; i + 1 < lines.size (); ++i)
+  {
+    const auto w = words (lines[i]);
+    if (w.empty () || w[0] == "comment" || w[0] == "obj_info")
+      continue;
+    if (w[0] == "format" && w.size () == 3 && w[2] == "1.0")
+      format = w[1];
+    else if (w[0] == "element" && w.size () == 3)
+    {
+      std::uint64_t count = 0;
+      if (!plainName (w[1]) || !toCount (w[2], count) || count > kMaxPoints)
+      {
+        reason = "bad element line '" + lines[i].substr (0, 40) + "'";
+        return false;
+      }
+      if (++element == 0)
+      {
+        if (w[1] != "vertex")
+        {
+          reason = "the first element must be 'vertex'";
+          return false;
+        }
+        vertices = count;
+      }
+    }
+    else if (w[0] == "property" && element >= 0)
+    {
+      PlyProperty property;
+      if (w.size () == 3 && plyDatatype (w[1]) && plainName (w[2]))
+      {
+        property.datatype = plyDatatype (w[1]);
+        property.name = w[2];
+      }
+      else if (w.size () == 5 && w[1] == "list" && plyDatatype (w[2]) && plyDatatype (w[3]) && plainName (w[4]))
+      {
+        property.count_type = plyDatatype (w[2]);
+        property.datatype = plyDatatype (w[3]);
+        property.name = w[4];
+      }
+      else
+      {
+        reason = "bad property line '" + lines[i].substr (0, 40) + "'";
+        return false;
+      }
+      if (element == 0)
+        properties.push_back (property);
+    }
+    else
+    {
+      reason = "unknown header line '" + lines[i].substr (0, 40) + "'";
+      return false;
+    }
+  }
+  const bool ascii = format == "ascii", big_endian = format == "binary_big_endian";
+  if (!ascii && !big_endian && format != "binary_little_endian")
+  {
+    reason = "unknown format '" + format + "'";
+    return false;
+  }
+  // The cloud's fields: the vertex's scalar properties as floats, colours packed into rgb.
+  auto index_of = [&properties] (const std::string &name) {
+    for (std::size_t i = 0; i < properties.size (); ++i)
+      if (properties[i].name == name && properties[i].count_type == 0)
+        return static_cast<int> (i);
+    return -1;
+  };
+  if (index_of ("x") < 0 || index_of ("y") < 0 || index_of ("z") < 0)
+  {
+    reason = "the vertex element has no x, y and z";
+    return false;
+  }
+  const int colour[3] = {index_of ("red"), index_of ("green"), index_of ("blue")};
+  const bool packed_rgb = colour[0] >= 0 && colour[1] >= 0 && colour[2] >= 0 &&
+                          properties[colour[0]].datatype == pcl::PCLPointField::UINT8 &&
+                          properties[colour[1]].datatype == pcl::PCLPointField::UINT8 &&
+                          properties[colour[2]].datatype == pcl::PCLPointField::UINT8;
+  cloud = pcl::PCLPointCloud2 ();
+  std::vector<int> slot (properties.size (), -1);  // property -> float slot in the point
+  std::uint32_t point_step = 0;
+  for (std::size_t i = 0; i < properties.size (); ++i)
+  {
+    if (properties[i].count_type != 0 ||
+        (packed_rgb && (static_cast<int> (i) == colour[0] || static_cast<int> (i) == colour[1] ||
+                        static_cast<int> (i) == colour[2])))
+      continue;
+    std::string name = properties[i].name;
+    if (name == "nx" || name == "ny" || name == "nz")
+      name = std::string ("normal_") + name[1];
+    if (std::any_of (cloud.fields.begin (), cloud.fields.end (), [&name] (const auto &f) { return f.name == name; }))
+      continue;  // a repeated name: the first one counts
+    pcl::PCLPointField field;
+    field.name = name;
+    field.offset = point_step;
+    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.count = 1;
+    cloud.fields.push_back (field);
+    slot[i] = static_cast<int> (point_step / 4);
+    point_step += 4;
+  }
+  std::uint32_t rgb_offset = 0;
+  if (packed_rgb)
+  {
+    pcl::PCLPointField field;
+    field.name = "rgb";
+    field.offset = rgb_offset = point_step;
+    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.count = 1;
+    cloud.fields.push_back (field);
+    point_step += 4;
+  }
+  setShape (cloud, vertices, 1, point_step);
+  cloud.data.assign (vertices * point_step, 0);
+  std::istringstream text (ascii ? bytes.substr (body) : std::string ());
+  std::size_t at = body;
+  std::vector<std::string> values;
+  for (std::uint64_t k = 0; k < vertices; ++k)
+  {
+    std::size_t next_word = 0;
+    if (ascii)
+    {
+      std::string line;
+      if (!std::getline (text, line))
+      {
+        reason = "the file has fewer lines than the " + std::to_string (vertices) + " vertices it announces";
+        return false;
+      }
+      values = words (line);
+    }
+    // One value, from the line or from the bytes.
+    auto next = [&] (std::uint8_t datatype, double &value) {
+      if (!ascii)
+        return readBinary (bytes, at, datatype, big_endian, value);
+      if (next_word >= values.size ())
+        return false;
+      char *end = nullptr;
+      value = std::strtod (values[next_word].c_str (), &end);
+      return end != values[next_word].c_str () && *end == '\0' && ++next_word > 0;
+    };
+    std::uint8_t *point = cloud.data.data () + k * point_step;
+    std::uint8_t rgb[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < properties.size (); ++i)
+    {
+      double value = 0.0;
+      if (!next (properties[i].count_type ? properties[i].count_type : properties[i].datatype, value))
+      {
+        reason = "vertex " + std::to_string (k) + " is truncated or malformed";
+        return false;
+      }
+      if (properties[i].count_type)
+      {
+        // A list on a vertex: read past its items.
+        if (!(value >= 0.0 && value <= 1000.0))
+        {
+          reason = "vertex " + std::to_string (k) + " has a bad list length";
+          return false;
+        }
+        for (int item = 0; item < static_cast<int> (value); ++item)
+        {
+          double ignored = 0.0;
+          if (!next (properties[i].datatype, ignored))
+          {
+            reason = "vertex " + std::to_string (k) + " is truncated";
+            return false;
+          }
+        }
+        continue;
+      }
+      for (int c = 0; c < 3; ++c)
+        if (packed_rgb && static_cast<int> (i) == colour[c])
+          rgb[c] = static_cast<std::uint8_t> (std::min (255.0, std::max (0.0, value)));
+      if (slot[i] >= 0)
+      {
+        const float f = static_cast<float> (value);
+        std::memcpy (point + 4 * slot[i], &f, 4);
+      }
+    }
+    if (packed_rgb)
+    {
+      const std::uint32_t packed = (static_cast<std::uint32_t> (rgb[0]) << 16) |
+                                   (static_cast<std::uint32_t> (rgb[1]) << 8) | rgb[2];
+      std::memcpy (point + rgb_offset, &packed, 4);
+    }
+  }
+  return true;
+}
+}  // namespace
+
+bool
+readPcd (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
+{
+  std::string bytes, reason;
+  if (!slurp (path, bytes, error))
+    return false;
+  if (parsePcd (bytes, cloud, reason))
+    return true;
+  error = "'" + path + "' is not a readable pcd point cloud: " + reason;
+  return false;
+}
+
+bool
+readPly (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
+{
+  std::string bytes, reason;
+  if (!slurp (path, bytes, error))
+    return false;
+  if (parsePly (bytes, cloud, reason))
+    return true;
+  error = "'" + path + "' is not a readable ply point cloud: " + reason;
+  return false;
+}
+
+}  // namespace pcl_holefill_tool

@@ -5,6 +5,8 @@
  * bench_holefill [points]: speed of detection and filling, each next to PCL
  * operations on the same cloud in the same run. Prints tables; exits 0.
  */
+#include "bench_clouds.h"
+
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/shapes.h>
@@ -17,7 +19,6 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
-#include <random>
 #include <thread>
 
 namespace shapes = pcl_holefill::shapes;
@@ -40,23 +41,6 @@ seconds (const std::function<void ()> &work, int runs)
   return times[times.size () / 2];
 }
 
-/** \a count balls of radius \a radius centred on the sphere, apart from each other. */
-std::vector<shapes::Ball>
-sphereHoles (std::size_t count, double radius, unsigned seed)
-{
-  std::mt19937 rng (seed);
-  std::normal_distribution<double> gauss;
-  std::vector<shapes::Ball> balls;
-  for (int attempt = 0; attempt < 10000 && balls.size () < count; ++attempt)
-  {
-    Eigen::Vector3d d (gauss (rng), gauss (rng), gauss (rng));
-    const Eigen::Vector3d c = Eigen::Vector3d::Constant (0.5) + 0.5 * d.normalized ();
-    if (std::all_of (balls.begin (), balls.end (), [&] (const auto &b) { return (b.centre - c).norm () > 3 * radius; }))
-      balls.push_back ({c, radius});
-  }
-  return balls;
-}
-
 double
 pclNormals (const Cloud::Ptr &cloud, int threads)
 {
@@ -71,8 +55,8 @@ pclNormals (const Cloud::Ptr &cloud, int threads)
 void
 detectionTable (std::size_t points, int threads)
 {
-  const auto holes = sphereHoles (10, 0.06, 3);
-  const auto cut = shapes::cutHoles (shapes::sphere ().sample (points), holes);
+  const auto holes = bench::sphereHoles (10, 0.06, 3);
+  const auto cut = bench::sphereWithTenHoles (points);
   Cloud::Ptr cloud (new Cloud (cut.kept));
   std::printf ("\n== Detection: sphere, %zu points, %zu holes, %d threads\n", cloud->size (), holes.size (), threads);
 
@@ -147,8 +131,8 @@ fillTable (int threads)
 void
 pipelineTable (std::size_t points, int threads)
 {
-  const auto holes = sphereHoles (10, 0.06, 3);
-  const auto cut = shapes::cutHoles (shapes::sphere ().sample (points), holes);
+  const auto holes = bench::sphereHoles (10, 0.06, 3);
+  const auto cut = bench::sphereWithTenHoles (points);
   Cloud::Ptr cloud (new Cloud (cut.kept));
   std::printf ("\n== Full pipeline (detection + filling): sphere, %zu points, %zu holes, %d threads\n",
                cloud->size (), holes.size (), threads);

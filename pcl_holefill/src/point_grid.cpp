@@ -58,8 +58,10 @@ PointGrid::reset (float cell_size)
   cell_size_ = (std::isfinite (cell_size) && cell_size > 0.f) ? cell_size : 1.f;
   inverse_cell_size_ = 1.f / cell_size_;
   size_ = 0;
-  cells_.clear ();
   cell_keys_.clear ();
+  bulk_.clear ();
+  bulk_begin_.clear ();
+  extra_.clear ();
   table_keys_.assign (64, kEmpty);
   table_cells_.assign (64, -1);
   for (int d = 0; d < 3; ++d)
@@ -106,7 +108,7 @@ PointGrid::findCell (CellKey key) const
 int
 PointGrid::findOrAddCell (CellKey key)
 {
-  if ((cells_.size () + 1) * 2 > table_keys_.size ())
+  if ((cell_keys_.size () + 1) * 2 > table_keys_.size ())
     rehash (table_keys_.size () * 2);
   const std::size_t mask = table_keys_.size () - 1;
   std::size_t slot = mix (key) & mask;
@@ -115,8 +117,7 @@ PointGrid::findOrAddCell (CellKey key)
   if (table_keys_[slot] == kEmpty)
   {
     table_keys_[slot] = key;
-    table_cells_[slot] = static_cast<int> (cells_.size ());
-    cells_.emplace_back ();
+    table_cells_[slot] = static_cast<int> (cell_keys_.size ());
     cell_keys_.push_back (key);
   }
   return table_cells_[slot];
@@ -143,6 +144,60 @@ PointGrid::rehash (std::size_t capacity)
 }
 
 void
+PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids)
+{
+  reset (cell_size_);
+  std::vector<int> cell_of (points.size (), -1);
+  std::vector<std::size_t> counts;
+  for (std::size_t i = 0; i < points.size (); ++i)
+  {
+    if (!points[i].allFinite ())
+      continue;
+    int c[3];
+    cellCoordinates (points[i], c[0], c[1], c[2]);
+    for (int d = 0; d < 3; ++d)
+    {
+      min_cell_[d] = std::min (min_cell_[d], c[d]);
+      max_cell_[d] = std::max (max_cell_[d], c[d]);
+    }
+    cell_of[i] = findOrAddCell (keyOf (c[0], c[1], c[2]));
+    if (static_cast<std::size_t> (cell_of[i]) >= counts.size ())
+      counts.resize (cell_of[i] + 1, 0);
+    ++counts[cell_of[i]];
+  }
+  counts.resize (cell_keys_.size (), 0);
+  bulk_begin_.assign (cell_keys_.size () + 1, 0);
+  for (std::size_t c = 0; c < counts.size (); ++c)
+    bulk_begin_[c + 1] = bulk_begin_[c] + static_cast<std::uint32_t> (counts[c]);
+  bulk_.resize (bulk_begin_.back ());
+  std::vector<std::uint32_t> next (bulk_begin_.begin (), bulk_begin_.end () - 1);
+  for (std::size_t i = 0; i < points.size (); ++i)
+    if (cell_of[i] >= 0)
+    {
+      bulk_[next[cell_of[i]]++] = {points[i].x (), points[i].y (), points[i].z (),
+                                   ids ? (*ids)[i] : static_cast<int> (i)};
+      ++size_;
+    }
+}
+
+PointGrid::CellSpan
+PointGrid::cell (int index) const
+{
+  CellSpan span;
+  if (static_cast<std::size_t> (index) + 1 < bulk_begin_.size ())
+  {
+    span.bulk = bulk_.data () + bulk_begin_[index];
+    span.bulk_count = bulk_begin_[index + 1] - bulk_begin_[index];
+  }
+  if (static_cast<std::size_t> (index) < extra_.size ())
+  {
+    span.extra = extra_[index].data ();
+    span.extra_count = extra_[index].size ();
+  }
+  return span;
+}
+
+void
 PointGrid::insert (const Eigen::Vector3f &position, int id)
 {
   if (!position.allFinite ())
@@ -154,7 +209,10 @@ PointGrid::insert (const Eigen::Vector3f &position, int id)
     min_cell_[d] = std::min (min_cell_[d], c[d]);
     max_cell_[d] = std::max (max_cell_[d], c[d]);
   }
-  cells_[findOrAddCell (keyOf (c[0], c[1], c[2]))].push_back ({position.x (), position.y (), position.z (), id});
+  const int index = findOrAddCell (keyOf (c[0], c[1], c[2]));
+  if (static_cast<std::size_t> (index) >= extra_.size ())
+    extra_.resize (cell_keys_.size ());
+  extra_[index].push_back ({position.x (), position.y (), position.z (), id});
   ++size_;
 }
 
@@ -177,16 +235,15 @@ PointGrid::collectShell (int cx, int cy, int cz, int ring, const Eigen::Vector3f
       {
         if (iz < lo[2])
           continue;
-        const int cell = findCell (keyOf (ix, iy, iz));
-        if (cell < 0)
+        const int index = findCell (keyOf (ix, iy, iz));
+        if (index < 0)
           continue;
-        for (const Entry &e : cells_[cell])
-        {
+        cell (index).forEach ([&] (const Entry &e) {
           const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
           const float d2 = dx * dx + dy * dy + dz * dz;
           if (d2 <= max_sqr)
             out.push_back ({e.id, d2});
-        }
+        });
       }
     }
 }
@@ -217,12 +274,11 @@ PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour>
   }
   // Isolated query: scan everything once (bounded by the grid's size).
   result.clear ();
-  for (const auto &cell : cells_)
-    for (const Entry &e : cell)
-    {
+  for (std::size_t c = 0; c < cell_keys_.size (); ++c)
+    cell (static_cast<int> (c)).forEach ([&] (const Entry &e) {
       const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
       result.push_back ({e.id, dx * dx + dy * dy + dz * dz});
-    }
+    });
   keepNearest (result, static_cast<std::size_t> (k));
 }
 
@@ -241,7 +297,7 @@ PointGrid::forEachNearestK (int k, int threads,
     std::vector<Neighbour> candidates;
     std::vector<Neighbour> fallback;
 #pragma omp for schedule(dynamic, 64)
-    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cells_.size ()); ++c)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cell_keys_.size ()); ++c)
     {
       const int cx = unpack (cell_keys_[c], 42), cy = unpack (cell_keys_[c], 21), cz = unpack (cell_keys_[c], 0);
       block.clear ();
@@ -249,12 +305,14 @@ PointGrid::forEachNearestK (int k, int threads,
         for (int iy = cy - 1; iy <= cy + 1; ++iy)
           for (int iz = cz - 1; iz <= cz + 1; ++iz)
           {
-            const int cell = findCell (keyOf (ix, iy, iz));
-            if (cell >= 0)
-              block.insert (block.end (), cells_[cell].begin (), cells_[cell].end ());
+            const int index = findCell (keyOf (ix, iy, iz));
+            if (index >= 0)
+              cell (index).forEach ([&block] (const Entry &e) { block.push_back (e); });
           }
       const float inner = cell_size_ * cell_size_;
-      for (const Entry &self : cells_[c])
+      std::vector<Entry> own;
+      cell (static_cast<int> (c)).forEach ([&own] (const Entry &e) { own.push_back (e); });
+      for (const Entry &self : own)
       {
         // Every point within one cell edge of self lies in the block, so if
         // at least k + 1 of them (self included) are that near, the k nearest
@@ -391,9 +449,9 @@ PointGrid::suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k)
     {
       int ix, iy, iz;
       probe.cellCoordinates (p, ix, iy, iz);
-      const std::size_t before = probe.cells_.size ();
+      const std::size_t before = probe.cell_keys_.size ();
       probe.findOrAddCell (probe.keyOf (ix, iy, iz));
-      occupied += probe.cells_.size () - before;
+      occupied += probe.cell_keys_.size () - before;
     }
   const float area = static_cast<float> (occupied) * coarse * coarse;
   const float density = static_cast<float> (finite) / std::max (area, 1e-30f);

@@ -133,6 +133,10 @@ private:
   int
   nearestCloudIndex (const Eigen::Vector3f &position) const;
 
+  /** Nearest-neighbour distance of a rim point, the mean spacing for others. */
+  float
+  spacingOf (int local) const;
+
   /** Fills length, spacing, diameter of a loop from its indices. */
   void
   measure (BoundaryLoop &loop) const;
@@ -150,7 +154,7 @@ private:
   std::vector<int> local_of_;             //!< cloud index -> position in usable_, or -1
   std::vector<Eigen::Vector3f> positions_;
   std::vector<Eigen::Vector3f> normals_;  //!< unit
-  std::vector<float> nearest_distance_;   //!< per usable point
+  std::vector<std::pair<int, float>> rim_spacing_;  //!< (usable point, nearest distance) of rim points, sorted
   PointGrid grid_;                        //!< over positions_, when no search is set
   std::vector<char> flags_;
   float mean_spacing_ = 0.f;

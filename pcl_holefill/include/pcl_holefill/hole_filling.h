@@ -67,6 +67,7 @@ public:
   using ConstPtr = pcl::shared_ptr<const HoleFilling<PointT>>;
   using PointCloud = pcl::PointCloud<PointT>;
   using PointCloudPtr = typename PointCloud::Ptr;
+  using PointCloudConstPtr = typename PointCloud::ConstPtr;
   using SearchPtr = typename pcl::search::Search<PointT>::Ptr;
 
   HoleFilling () { filter_name_ = "HoleFilling"; }
@@ -149,9 +150,13 @@ private:
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report) const;
 
+  /** \a output = \a points then every fill, allocated once. */
+  void
+  writeOutput (const PointCloud &points, const std::vector<PointCloud> &fills, PointCloud &output) const;
+
   /** The loops to fill, as indices into \a working (the indexed points). */
   bool
-  collectHoles (const PointCloudPtr &working, const SearchPtr &search, std::vector<BoundaryLoop> &holes) const;
+  collectHoles (const PointCloudConstPtr &working, const SearchPtr &search, std::vector<BoundaryLoop> &holes) const;
 
   float radius_ = 0.f;
   float shrink_ = 1.f;

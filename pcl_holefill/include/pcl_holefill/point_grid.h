@@ -39,6 +39,12 @@ public:
   void
   reset (float cell_size);
 
+  /** \brief Replaces the content by \a points (ids 0..n-1, or \a ids when
+    * given), counting per cell first so that every cell is allocated once at
+    * its exact size: the memory of a bulk load is the points' and no more. */
+  void
+  build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids = nullptr);
+
   /** \brief Adds one point with the caller's id. Non-finite points are ignored. */
   void
   insert (const Eigen::Vector3f &position, int id);
@@ -112,6 +118,28 @@ private:
   void
   rehash (std::size_t capacity);
 
+  /** The points of one cell: those of the last build(), then those inserted since. */
+  struct CellSpan
+  {
+    const Entry *bulk = nullptr;
+    std::size_t bulk_count = 0;
+    const Entry *extra = nullptr;
+    std::size_t extra_count = 0;
+
+    template <typename Visit>
+    void
+    forEach (Visit visit) const
+    {
+      for (std::size_t i = 0; i < bulk_count; ++i)
+        visit (bulk[i]);
+      for (std::size_t i = 0; i < extra_count; ++i)
+        visit (extra[i]);
+    }
+  };
+
+  CellSpan
+  cell (int index) const;
+
   /** Visits the cells of the shell at Chebyshev distance \a ring around
     * (cx, cy, cz) and collects the points within sqrt(max_sqr) of query. */
   void
@@ -126,8 +154,13 @@ private:
   // Open addressing: table_keys_[slot] holds a key or kEmpty; table_cells_[slot] the cell.
   std::vector<CellKey> table_keys_;
   std::vector<int> table_cells_;
-  std::vector<std::vector<Entry>> cells_;
   std::vector<CellKey> cell_keys_;  //!< the key of each cell, to find its neighbours
+  // Points of build() in one array, cell after cell (no per-cell allocation:
+  // the grid of a million points costs its 16 bytes a point); points
+  // inserted later go to small per-cell vectors.
+  std::vector<Entry> bulk_;
+  std::vector<std::uint32_t> bulk_begin_;  //!< cell c's bulk points: [bulk_begin_[c], bulk_begin_[c + 1])
+  std::vector<std::vector<Entry>> extra_;
 };
 
 }  // namespace pcl_holefill

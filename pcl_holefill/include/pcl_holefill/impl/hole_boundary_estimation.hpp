@@ -12,6 +12,8 @@
 
 #include <pcl/console/print.h>
 
+#include <mutex>
+
 #include <cmath>
 #include <limits>
 
@@ -22,7 +24,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
 {
   positions_.clear ();
   normals_.clear ();
-  nearest_distance_.clear ();
+  rim_spacing_.clear ();
   mean_spacing_ = 0.f;
   flags_.assign (input_ ? input_->size () : 0, 0);
   if (!input_ || input_->empty ())
@@ -61,31 +63,36 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
               "no loop.\n", caller, usable_->size (), k_);
     return false;
   }
-  // Work in spatial (Morton) order: the per-point pass then reads memory in order.
-  std::vector<Eigen::Vector3f> unordered;
-  unordered.reserve (usable_->size ());
-  for (const auto i : *usable_)
-    unordered.push_back ((*input_)[i].getVector3fMap ());
-  const float cell = PointGrid::suggestCellSize (unordered, k_);
-  const std::vector<int> order = PointGrid::spatialOrder (unordered, cell);
-  // Repeated positions would fill the k nearest with copies of one
-  // neighbour: only the first of each is used (spatialOrder puts them together).
-  pcl::IndicesPtr ordered (new pcl::Indices);
-  ordered->reserve (usable_->size ());
-  std::size_t duplicates = 0;
-  for (std::size_t i = 0; i < order.size (); ++i)
+  // Work in spatial (Morton) order: the per-point pass then reads memory in
+  // order. The unordered copies live only in this block, so that they are
+  // gone before the grid is built (the peak memory of a large cloud).
+  float cell = 0.f;
   {
-    if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
+    std::vector<Eigen::Vector3f> unordered;
+    unordered.reserve (usable_->size ());
+    for (const auto i : *usable_)
+      unordered.push_back ((*input_)[i].getVector3fMap ());
+    cell = PointGrid::suggestCellSize (unordered, k_);
+    const std::vector<int> order = PointGrid::spatialOrder (unordered, cell);
+    // Repeated positions would fill the k nearest with copies of one
+    // neighbour: only the first of each is used (spatialOrder puts them together).
+    pcl::IndicesPtr ordered (new pcl::Indices);
+    ordered->reserve (usable_->size ());
+    std::size_t duplicates = 0;
+    for (std::size_t i = 0; i < order.size (); ++i)
     {
-      ++duplicates;
-      continue;
+      if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
+      {
+        ++duplicates;
+        continue;
+      }
+      ordered->push_back ((*usable_)[order[i]]);
     }
-    ordered->push_back ((*usable_)[order[i]]);
+    if (duplicates > 0)
+      PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
+                "another.\n", caller, duplicates);
+    usable_ = ordered;
   }
-  if (duplicates > 0)
-    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
-              "another.\n", caller, duplicates);
-  usable_ = ordered;
   local_of_.assign (input_->size (), -1);
   positions_.reserve (usable_->size ());
   normals_.reserve (usable_->size ());
@@ -101,8 +108,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   else
   {
     grid_.reset (cell);
-    for (std::size_t i = 0; i < positions_.size (); ++i)
-      grid_.insert (positions_[i], static_cast<int> (i));
+    grid_.build (positions_);
   }
   return true;
 }
@@ -155,6 +161,14 @@ HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &positi
   return found.empty () ? -1 : (*usable_)[found[0].id];
 }
 
+template <typename PointT> float
+HoleBoundaryEstimation<PointT>::spacingOf (int local) const
+{
+  const auto it = std::lower_bound (rim_spacing_.begin (), rim_spacing_.end (), std::make_pair (local, 0.f),
+                                    [] (const auto &a, const auto &b) { return a.first < b.first; });
+  return it != rim_spacing_.end () && it->first == local ? it->second : mean_spacing_;
+}
+
 template <typename PointT> void
 HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
 {
@@ -163,8 +177,7 @@ HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
   for (const auto i : loop.indices)
   {
     points.push_back ((*input_)[i].getVector3fMap ());
-    const int local = local_of_[i];
-    spacing += local >= 0 && !nearest_distance_.empty () ? nearest_distance_[local] : mean_spacing_;
+    spacing += spacingOf (local_of_[i]);
   }
   loop.length = loopLength (points, loop.closed);
   loop.diameter = loopDiameter (points);
@@ -178,11 +191,19 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
   if (!prepare ("compute"))
     return;
 
-  // 1. The angular-gap test on every usable point.
+  // 1. The angular-gap test on every usable point. Only rim points are kept
+  // (with their gap direction and spacing): a few percent of the cloud.
+  struct RimPoint
+  {
+    int local;
+    Eigen::Vector3f gap;
+    float spacing;
+  };
   const std::size_t n = positions_.size ();
-  std::vector<char> on_rim (n, 0);
-  std::vector<Eigen::Vector3f> gap_direction (n, Eigen::Vector3f::Zero ());
-  nearest_distance_.assign (n, 0.f);
+  const int threads = resolveThreadCount (threads_);
+  std::vector<RimPoint> rim_points;
+  std::mutex rim_mutex;  // rim points are few: a lock per rim point is cheap
+  std::vector<float> spacing_of (n, 0.f);
   auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
     if (count == 0)
       return;
@@ -191,16 +212,16 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
     for (int j = 0; j < count; ++j)
       if (d2[j] > 0.f)
         nearest = std::min (nearest, d2[j]);
-    nearest_distance_[i] = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
+    const float spacing = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
+    spacing_of[i] = spacing;
     const AngularGap gap =
         largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
     if (gap.angle > angle_threshold_)
     {
-      on_rim[i] = 1;
-      gap_direction[i] = gap.direction;
+      std::lock_guard<std::mutex> lock (rim_mutex);
+      rim_points.push_back ({static_cast<int> (i), gap.direction, spacing});
     }
   };
-  const int threads = resolveThreadCount (threads_);
   if (!search_)
   {
     // The grid's own cell-by-cell kNN: the fast path.
@@ -227,22 +248,25 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
     }
   }
   double sum = 0.0;
-  for (const float d : nearest_distance_)
+  for (const float d : spacing_of)
     sum += d;
   mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
+  std::sort (rim_points.begin (), rim_points.end (), [] (const auto &a, const auto &b) { return a.local < b.local; });
+  rim_spacing_.clear ();
+  for (const auto &r : rim_points)
+    rim_spacing_.push_back ({r.local, r.spacing});
 
   // 2. Chain the rim points into loops.
   std::vector<int> rim;
   std::vector<Eigen::Vector3f> rim_positions, rim_normals, rim_gaps;
-  for (std::size_t i = 0; i < n; ++i)
-    if (on_rim[i])
-    {
-      flags_[(*usable_)[i]] = 1;
-      rim.push_back (static_cast<int> (i));
-      rim_positions.push_back (positions_[i]);
-      rim_normals.push_back (normals_[i]);
-      rim_gaps.push_back (gap_direction[i]);
-    }
+  for (const auto &r : rim_points)
+  {
+    flags_[(*usable_)[r.local]] = 1;
+    rim.push_back (r.local);
+    rim_positions.push_back (positions_[r.local]);
+    rim_normals.push_back (normals_[r.local]);
+    rim_gaps.push_back (r.gap);
+  }
   const auto traced = traceBoundaryLoops (rim_positions, rim_normals, rim_gaps,
                                           link_factor_ * mean_spacing_, min_loop_points_);
 
@@ -291,15 +315,16 @@ HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature
       return false;
     }
   double sum = 0.0;
-  nearest_distance_.assign (positions_.size (), 0.f);
   std::vector<int> ids;
   std::vector<float> d2;
   for (const auto i : feature_indices)
   {
     nearestUsable (local_of_[i], 1, ids, d2);
-    nearest_distance_[local_of_[i]] = d2.empty () ? 0.f : std::sqrt (d2[0]);
-    sum += nearest_distance_[local_of_[i]];
+    const float spacing = d2.empty () ? 0.f : std::sqrt (d2[0]);
+    rim_spacing_.push_back ({local_of_[i], spacing});
+    sum += spacing;
   }
+  std::sort (rim_spacing_.begin (), rim_spacing_.end ());
   mean_spacing_ = static_cast<float> (sum / feature_indices.size ());
   loop.closed = closed;
   loop.is_hole = true;

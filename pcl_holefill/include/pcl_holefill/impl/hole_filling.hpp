@@ -75,7 +75,7 @@ HoleFilling<PointT>::checkParameters () const
 }
 
 template <typename PointT> bool
-HoleFilling<PointT>::collectHoles (const PointCloudPtr &working, const SearchPtr &search,
+HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const SearchPtr &search,
                                    std::vector<BoundaryLoop> &holes) const
 {
   holes.clear ();
@@ -138,8 +138,18 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     output.clear ();
     return;
   }
-  PointCloudPtr working (new PointCloud);
-  pcl::copyPointCloud (*input_, *indices_, *working);
+  // The points to work on: the input itself when the filter sees all of it
+  // unchanged (no copy of a large cloud), else a copy of the indexed points.
+  PointCloudConstPtr working = input_;
+  const bool whole_input = indices_->size () == input_->size () &&
+                           std::all_of (indices_->begin (), indices_->end (),
+                                        [k = 0] (pcl::index_t i) mutable { return i == k++; });
+  if (!whole_input)
+  {
+    PointCloudPtr subset (new PointCloud);
+    pcl::copyPointCloud (*input_, *indices_, *subset);
+    working = subset;
+  }
   if (denoise_)
   {
     BilateralPreprocessor<PointT> preprocessor;
@@ -150,20 +160,22 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     if (denoised->size () == working->size ())
       working = denoised;
   }
-  const auto header = output.header;
-  output = *working;  // every point, bit for bit; the fill comes after
-  output.header = header;
+
   // Flipped normals would read as sharp edges everywhere: work on an oriented
   // copy (the output keeps the given normals).
+  const PointCloudConstPtr given = working;
   const float flipped = flippedNeighbourShare (*working);
   if (flipped > detail::kMaxFlippedShare)
   {
     PCL_WARN ("[pcl_holefill::HoleFilling] %.0f%% of neighbouring normals point opposite ways: the normals are "
               "not consistently oriented. Filling with a consistently oriented copy.\n", 100.f * flipped);
-    working.reset (new PointCloud (*working));
-    orientNormalsConsistently (*working);
+    PointCloudPtr oriented (new PointCloud (*working));
+    orientNormalsConsistently (*oriented);
+    working = oriented;
   }
 
+  // Detection first, then the search that gathers each hole's surroundings:
+  // the two never take memory at the same time.
   SearchPtr search = search_;
   if (!search)
     search.reset (new VoxelHashSearch<PointT> (16));
@@ -176,6 +188,7 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
   if (holes.empty ())
   {
     PCL_DEBUG ("[pcl_holefill::HoleFilling] No hole to fill: the output is the input.\n");
+    writeOutput (*given, {}, output);
     return;
   }
   search->setInputCloud (working);
@@ -194,14 +207,36 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     }
   }
 
+  std::size_t next = working->size ();
   for (std::size_t h = 0; h < holes.size (); ++h)
   {
-    reports_[h].first_output_index = output.size ();
-    for (const auto &p : fills[h])
-      output.push_back (p);
+    reports_[h].first_output_index = next;
+    next += fills[h].size ();
   }
+  writeOutput (*given, fills, output);
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::writeOutput (const PointCloud &points, const std::vector<PointCloud> &fills,
+                                  PointCloud &output) const
+{
+  // Allocated once at its final size: copying first and appending after
+  // would hold two copies of a large cloud at once.
+  std::size_t total = points.size ();
+  for (const auto &f : fills)
+    total += f.size ();
+  const auto header = output.header;
+  output.clear ();
+  output.reserve (total);
+  output.insert (output.end (), points.begin (), points.end ());  // every point, bit for bit
+  for (const auto &f : fills)
+    output.insert (output.end (), f.begin (), f.end ());
+  output.header = header;
   output.width = static_cast<std::uint32_t> (output.size ());
   output.height = 1;
+  output.is_dense = points.is_dense;
+  output.sensor_origin_ = points.sensor_origin_;
+  output.sensor_orientation_ = points.sensor_orientation_;
 }
 
 template <typename PointT> void

@@ -39,8 +39,13 @@ VoxelHashSearch<PointT>::setInputCloud (const PointCloudConstPtr &cloud,
     cell = PointGrid::suggestCellSize (positions, neighbours_per_cell_block_);
   grid_.reset (cell > 0.f ? cell : 1.f);
   // Ids are cloud indices, so results need no translation.
-  for (std::size_t i = 0; i < count; ++i)
-    grid_.insert (positions[i], static_cast<int> (indices ? (*indices)[i] : i));
+  if (indices)
+  {
+    const std::vector<int> ids (indices->begin (), indices->end ());
+    grid_.build (positions, &ids);
+  }
+  else
+    grid_.build (positions);
   indexed_points_ = cloud->size ();
 }
 

@@ -96,6 +96,11 @@ public:
   void setMaxPasses (int n) { max_passes_ = n; }
   int getMaxPasses () const { return max_passes_; }
 
+  /** \brief A hole whose boundary grows past this many times its first
+    * length is diverging and stopped (>= 1, default 1.5). */
+  void setMaxBoundaryGrowth (float g) { max_growth_ = g; }
+  float getMaxBoundaryGrowth () const { return max_growth_; }
+
   void setFirstOrder (bool on) { first_order_ = on; }
   bool getFirstOrder () const { return first_order_; }
 
@@ -166,6 +171,7 @@ private:
   float spacing_factor_ = 1.5f;
   float termination_ratio_ = 0.3f;
   int max_passes_ = 200;
+  float max_growth_ = 1.5f;
   bool first_order_ = true;
   bool combination_constraint_ = true;
   bool denoise_ = false;

@@ -30,8 +30,9 @@ namespace pcl_holefill
 {
 namespace detail
 {
-// A boundary longer than this many times its first length is diverging.
-constexpr float kDivergenceGrowth = 1.5f;
+// A patch larger than this many discs spanning its rim suggests that more
+// than half of the shape is missing there (the paper's admitted failure).
+constexpr float kMaxAreaOverRimDisc = 2.5f;
 // The fill of a hole stays inside the ball around its rim's centroid of
 // radius kBoundScale x (rim radius) + 2 d_eq: a runaway front is cut there.
 constexpr float kBoundScale = 1.5f;
@@ -64,6 +65,8 @@ HoleFilling<PointT>::checkParameters () const
     bad = "termination ratio (0..1)";
   else if (max_passes_ < 1 || max_passes_ > 100000)
     bad = "max passes (1..100000)";
+  else if (!(max_growth_ >= 1.f && std::isfinite (max_growth_)))
+    bad = "max boundary growth (>= 1)";
   else if (!non_negative (max_hole_diameter_))
     bad = "max hole diameter (>= 0, 0 = no limit)";
   if (bad)
@@ -324,7 +327,9 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
     const PointT &p = (*local)[it->second];
     front[0].vertices.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
   }
-  const float first_length = frontLength (front);
+  // Growth is measured against the first contracted boundary, which is
+  // sampled like every later one (the input rim is jagged, hence longer).
+  float first_length = 0.f;
 
   ContractionStats stats;
   float pass_radius = radius;
@@ -367,7 +372,9 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
       report.termination = Termination::kControlRatio;
       break;
     }
-    if (frontLength (next) > detail::kDivergenceGrowth * first_length)
+    if (pass == 0)
+      first_length = frontLength (next);
+    else if (frontLength (next) > max_growth_ * first_length)
     {
       report.termination = Termination::kDiverging;
       break;
@@ -387,6 +394,13 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
                            report.termination == Termination::kNoNewBoundary;
   report.closed = natural_end && (2 * (stats.repelled + stats.too_close) >= discarded ||
                                   loopDiameter (last_boundary) <= detail::kClosedFrontDiameter * d_eq);
+  // Each filled point stands for about d_eq^2 of surface.
+  const float patch_area = static_cast<float> (local->size () - input_points) * d_eq * d_eq;
+  const float rim_disc = static_cast<float> (M_PI) * 0.25f * loop.diameter * loop.diameter;
+  if (report.closed && rim_disc > 0.f && patch_area > detail::kMaxAreaOverRimDisc * rim_disc)
+    PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g needed a patch %.1f times the disc on its rim: "
+              "more than half of the shape may be missing there, and the patch is a guess.\n",
+              loop.diameter, patch_area / rim_disc);
   if (report.termination == Termination::kDiverging || report.termination == Termination::kPassLimit)
     PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g stopped after %u passes (%s): it is not closed. "
               "More than half of the shape may be missing there.\n",

@@ -579,28 +579,33 @@ parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
 }
 }  // namespace
 
+namespace
+{
+/** Reads the file and runs \a parse on its bytes; one line of error either way. */
 bool
-readPcd (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
+readWith (bool (*parse) (const std::string &, pcl::PCLPointCloud2 &, std::string &), const char *format,
+          const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
 {
   std::string bytes, reason;
   if (!slurp (path, bytes, error))
     return false;
-  if (parsePcd (bytes, cloud, reason))
+  if (parse (bytes, cloud, reason))
     return true;
-  error = "'" + path + "' is not a readable pcd point cloud: " + reason;
+  error = "'" + path + "' is not a readable " + format + " point cloud: " + reason;
   return false;
+}
+}  // namespace
+
+bool
+readPcd (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
+{
+  return readWith (parsePcd, "pcd", path, cloud, error);
 }
 
 bool
 readPly (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
 {
-  std::string bytes, reason;
-  if (!slurp (path, bytes, error))
-    return false;
-  if (parsePly (bytes, cloud, reason))
-    return true;
-  error = "'" + path + "' is not a readable ply point cloud: " + reason;
-  return false;
+  return readWith (parsePly, "ply", path, cloud, error);
 }
 
 }  // namespace pcl_holefill_tool

@@ -139,9 +139,9 @@ score (const std::string &method, const Case &c, const shapes::CutCloud &cut, co
   return s;
 }
 
-/** Normals for the splats: from the output where it has them, else from the truth. */
+/** Normals for the splats: from the output where it has them, else pointing away from the model's centre. */
 void
-attachNormals (Score &s, const Cloud &output, const shapes::Shape &shape)
+attachNormals (Score &s, const Cloud &output)
 {
   std::size_t k = 0;
   for (const auto &p : output)
@@ -153,7 +153,6 @@ attachNormals (Score &s, const Cloud &output, const shapes::Shape &shape)
       n = (p.getVector3fMap () - Eigen::Vector3f::Constant (0.5f)).normalized ();
     s.splats[k++].normal = n;
   }
-  (void) shape;
 }
 
 template <typename Work>
@@ -281,16 +280,16 @@ main (int argc, char **argv)
     double seconds = 0.0;
     Cloud sharp = runHoleFill (input, 0.1f, seconds);
     scores.push_back (score ("pcl_holefill sharp", c, cut, sharp, h, seconds, scale));
-    attachNormals (scores.back (), sharp, c.shape);
+    attachNormals (scores.back (), sharp);
     Cloud smooth = runHoleFill (input, pcl_holefill::kSup, seconds);
     scores.push_back (score ("pcl_holefill smooth", c, cut, smooth, h, seconds, scale));
-    attachNormals (scores.back (), smooth, c.shape);
+    attachNormals (scores.back (), smooth);
     Cloud mls = runMls (input, h, c.hole.radius, seconds);
     scores.push_back (score ("PCL MLS", c, cut, mls, h, seconds, scale));
-    attachNormals (scores.back (), mls, c.shape);
+    attachNormals (scores.back (), mls);
     Cloud poisson = runPoisson (input, seconds);
     scores.push_back (score ("PCL Poisson", c, cut, poisson, h, seconds, scale));
-    attachNormals (scores.back (), poisson, c.shape);
+    attachNormals (scores.back (), poisson);
     for (const auto &s : scores)
       md << row (c.name, s);
 

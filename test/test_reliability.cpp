@@ -181,8 +181,6 @@ TEST (BadParameters, EveryClassRefusesNegativeZeroAndNan)
   Cloud::Ptr cloud (new Cloud (cut.kept));
   for (const float bad : {-1.f, 0.f, kNan})
   {
-    HoleBoundaryEstimation<pcl::PointNormal> estimation;
-    estimation.setInputCloud (cloud);
     std::vector<BoundaryLoop> loops;
     for (int which = 0; which < 3; ++which)
     {

@@ -296,6 +296,7 @@ PointGrid::forEachNearestK (int k, int threads,
     std::vector<Entry> block;
     std::vector<Neighbour> candidates;
     std::vector<Neighbour> fallback;
+    std::vector<Entry> own;  // the cell's points; one buffer per thread, reused
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cell_keys_.size ()); ++c)
     {
@@ -310,7 +311,7 @@ PointGrid::forEachNearestK (int k, int threads,
               cell (index).forEach ([&block] (const Entry &e) { block.push_back (e); });
           }
       const float inner = cell_size_ * cell_size_;
-      std::vector<Entry> own;
+      own.clear ();
       cell (static_cast<int> (c)).forEach ([&own] (const Entry &e) { own.push_back (e); });
       for (const Entry &self : own)
       {

@@ -24,6 +24,9 @@ struct BoundaryLoop
   float length = 0.f;
   /** Mean distance from a rim point to its nearest input neighbour. */
   float mean_spacing = 0.f;
+  /** Sampling pitch around the rim: sqrt(surface area per point), from the
+    * density of the k nearest neighbours; 0 when not measured. */
+  float pitch = 0.f;
   /** Largest distance between two rim points: the hole's size. */
   float diameter = 0.f;
 };

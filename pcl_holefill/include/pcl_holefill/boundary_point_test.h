@@ -39,6 +39,23 @@ unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &un
   return unfolded;
 }
 
+/** \brief The sampling pitch at a point, sqrt(surface area per point), from
+  * its \a count nearest neighbours, the farthest at squared distance
+  * \a farthest_sqr, which cover the disc of that radius less the empty sector
+  * \a gap_angle (radians; 0 inside the surface). Unlike the nearest-neighbour
+  * distance (about 0.5 pitch for uniformly random samples, 0.9 for
+  * Poisson-disk, 1 for a grid) it means the same for every sampler. */
+inline float
+samplingPitch (float farthest_sqr, int count, float gap_angle)
+{
+  if (count < 2)
+    return 0.f;
+  // Area of the covered sector, r^2 (2 pi - gap) / 2, over the points in it
+  // (count - 0.5: the farthest lies on the sector's edge).
+  const float area = 0.5f * farthest_sqr * (2.f * static_cast<float> (M_PI) - gap_angle);
+  return std::sqrt (area / (static_cast<float> (count) - 0.5f));
+}
+
 /** \brief The angular-gap boundary test (as PCL's BoundaryEstimation): the
   * neighbours are projected on the tangent plane of \a point and the largest
   * angle between consecutive ones is returned with its bisector, which points

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/boundary_loop.h>
+#include <pcl_holefill/boundary_point_test.h>
 #include <pcl_holefill/point_grid.h>
 
 #include <pcl/pcl_base.h>
@@ -24,8 +25,12 @@ namespace pcl_holefill
   *  1. a point is on a rim when its k nearest neighbours, seen in its tangent
   *     plane, leave an empty sector wider than the angle threshold (PCL's
   *     BoundaryEstimation test; with the given normals it does not fire along
-  *     sharp edges and corners of a solid, see largestAngularGap);
-  *  2. rim points closer than link_distance_factor x the mean spacing are
+  *     sharp edges and corners of a solid, see largestAngularGap), and an
+  *     empty disc of the minimum hole size touches it inside that sector
+  *     (emptyDiscTouches): every sampling leaves small gaps, white noise
+  *     (uniform random sampling) gaps of up to 4.9 pitches across on 4
+  *     million points; a hole is missing surface wider than those;
+  *  2. rim points closer than link_distance_factor pitches are
   *     chained into loops (traceBoundaryLoops), and gaps between consecutive
   *     loop points are closed with the paper's midpoint refinement (sec. 3.3);
   *  3. a loop whose empty sectors face its inside is a hole; one facing
@@ -71,7 +76,7 @@ public:
   float
   getAngleThreshold () const { return angle_threshold_; }
 
-  /** \brief Rim points closer than this many mean spacings are chained (default 3.5). */
+  /** \brief Rim points closer than this many sampling pitches are chained (default 4.5: a rim of uniformly random samples, thinned to the points an empty disc touches, has steps of up to 4 pitches). */
   void
   setLinkDistanceFactor (float factor) { link_factor_ = factor; }
   float
@@ -88,6 +93,21 @@ public:
   setMaxHoleDiameter (float diameter) { max_hole_diameter_ = diameter; }
   float
   getMaxHoleDiameter () const { return max_hole_diameter_; }
+
+  /** \brief Smallest hole reported, as the diameter of the empty disc it
+    * must hold, in local sampling pitches (sqrt of the surface area per
+    * point, measured from the k nearest neighbours). Default 6, range 2..100.
+    * Below 5 the gaps of uniformly random sampling are reported as holes. */
+  void
+  setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
+  float
+  getMinHoleSize () const { return min_hole_pitches_; }
+
+  /** \brief The same in cloud units; 0 (default) = use setMinHoleSize. */
+  void
+  setMinHoleDiameter (float diameter) { min_hole_diameter_ = diameter; }
+  float
+  getMinHoleDiameter () const { return min_hole_diameter_; }
 
   /** \brief Threads for the per-point test; 0 (default) = all cores. */
   void
@@ -113,6 +133,10 @@ public:
   float
   getMeanSpacing () const { return mean_spacing_; }
 
+  /** \brief After compute(): mean sampling pitch, sqrt(area per point). */
+  float
+  getMeanPitch () const { return mean_pitch_; }
+
 protected:
   using pcl::PCLBase<PointT>::input_;
   using pcl::PCLBase<PointT>::indices_;
@@ -137,6 +161,17 @@ private:
   float
   spacingOf (int local) const;
 
+  /** True when a disc of diameter \a diameter, empty of points on this side
+    * of the surface, touches usable point \a local from inside its empty
+    * sector \a gap (tried at several angles within the sector: the sector's
+    * bisector on a ragged rim need not point at the hole's centre). */
+  bool
+  emptyDiscTouches (int local, const AngularGap &gap, float diameter, float pitch) const;
+
+  /** Usable points within \a radius of usable point \a local, as local ids. */
+  void
+  usableWithin (int local, float radius, std::vector<int> &ids) const;
+
   /** Fills length, spacing, diameter of a loop from its indices. */
   void
   measure (BoundaryLoop &loop) const;
@@ -144,7 +179,9 @@ private:
   SearchPtr search_;
   int k_ = 16;
   float angle_threshold_ = static_cast<float> (M_PI / 2.0);
-  float link_factor_ = 3.5f;
+  float link_factor_ = 4.5f;
+  float min_hole_pitches_ = 6.f;
+  float min_hole_diameter_ = 0.f;
   int min_loop_points_ = 6;
   float max_hole_diameter_ = 0.f;
   unsigned int threads_ = 0;
@@ -158,6 +195,7 @@ private:
   PointGrid grid_;                        //!< over positions_, when no search is set
   std::vector<char> flags_;
   float mean_spacing_ = 0.f;
+  float mean_pitch_ = 0.f;
 };
 
 }  // namespace pcl_holefill

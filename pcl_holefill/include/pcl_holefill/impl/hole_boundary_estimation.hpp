@@ -19,6 +19,20 @@
 
 namespace pcl_holefill
 {
+namespace detail
+{
+// Neighbours whose normal is more than ~107 degrees from a point's lie on the
+// other side of a thin part: they do not fill a gap on this side.
+constexpr float kOtherSideCosine = -0.3f;
+// How much smaller than the hole (in pitches of radius) the disc tested at a
+// rim point is: a sampled rim is ragged by about a pitch.
+constexpr float kRimRaggedness = 0.5f;
+// Angles (radians) from the empty sector's bisector at which the disc is
+// tried, and how far from the sector's sides it must stay.
+constexpr float kDiscLeans[] = {0.f, 0.26f, -0.26f, 0.52f, -0.52f, 0.79f, -0.79f};
+constexpr float kDiscLeanMargin = 0.17f;
+}  // namespace detail
+
 template <typename PointT> bool
 HoleBoundaryEstimation<PointT>::prepare (const char *caller)
 {
@@ -34,12 +48,16 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   }
   if (k_ < 3 || k_ > 64 || !(angle_threshold_ >= M_PI / 2.0 && angle_threshold_ < 2.f * M_PI) ||
       !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
-      !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)))
+      !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)) ||
+      !(min_hole_pitches_ >= 2.f && min_hole_pitches_ <= 100.f) ||
+      !(min_hole_diameter_ >= 0.f && std::isfinite (min_hole_diameter_)))
   {
     PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] Invalid parameters: k = %d (3..64), angle "
                "threshold = %g (pi/2..2pi), link distance factor = %g (> 0), min loop points = %d (>= 3), "
-               "max hole diameter = %g (>= 0).\n",
-               caller, k_, angle_threshold_, link_factor_, min_loop_points_, max_hole_diameter_);
+               "max hole diameter = %g (>= 0), min hole size = %g pitches (2..100), min hole diameter = %g "
+               "(>= 0).\n",
+               caller, k_, angle_threshold_, link_factor_, min_loop_points_, max_hole_diameter_,
+               min_hole_pitches_, min_hole_diameter_);
     return false;
   }
   if (!initCompute ())
@@ -161,6 +179,68 @@ HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &positi
   return found.empty () ? -1 : (*usable_)[found[0].id];
 }
 
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::usableWithin (int local, float radius, std::vector<int> &ids) const
+{
+  ids.clear ();
+  if (search_)
+  {
+    pcl::Indices found;
+    std::vector<float> d2;
+    search_->radiusSearch ((*input_)[(*usable_)[local]], radius, found, d2);
+    for (const auto i : found)
+      if (local_of_[i] >= 0 && local_of_[i] != local)
+        ids.push_back (local_of_[i]);
+    return;
+  }
+  thread_local std::vector<PointGrid::Neighbour> found;
+  grid_.withinRadius (positions_[local], radius, found);
+  for (const auto &n : found)
+    if (n.id != local)
+      ids.push_back (n.id);
+}
+
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const AngularGap &gap, float diameter,
+                                                  float pitch) const
+{
+  const Eigen::Vector3f &p = positions_[local];
+  const Eigen::Vector3f &n = normals_[local];
+  const float radius = 0.5f * diameter;
+  thread_local std::vector<int> ids;
+  usableWithin (local, diameter, ids);
+  // The neighbours laid out in the tangent plane (unfolded across sharp
+  // edges, as the angular-gap test sees them). Points whose normal faces
+  // away are the other side of a thin part, not surface next to this one.
+  thread_local std::vector<Eigen::Vector2f> flat;
+  flat.clear ();
+  const Eigen::Vector3f e1 = gap.direction;
+  const Eigen::Vector3f e2 = n.cross (e1);
+  for (const int j : ids)
+  {
+    if (normals_[j].dot (n) < detail::kOtherSideCosine)
+      continue;
+    const Eigen::Vector3f u = unfoldIntoTangentPlane (positions_[j] - p, n, normals_[j]);
+    flat.emplace_back (u.dot (e1), u.dot (e2));
+  }
+  // A rim is ragged by about a pitch: the disc tested is that much smaller
+  // than the hole it stands for, and may lean within the empty sector.
+  const float test_radius = radius - detail::kRimRaggedness * pitch;
+  const float max_lean = std::max (0.f, 0.5f * gap.angle - detail::kDiscLeanMargin);
+  for (const float lean : detail::kDiscLeans)
+  {
+    if (std::abs (lean) > max_lean)
+      continue;
+    const Eigen::Vector2f centre = radius * Eigen::Vector2f (std::cos (lean), std::sin (lean));
+    const bool empty = std::none_of (flat.begin (), flat.end (), [&] (const Eigen::Vector2f &u) {
+      return (u - centre).squaredNorm () < test_radius * test_radius;
+    });
+    if (empty)
+      return true;
+  }
+  return false;
+}
+
 template <typename PointT> float
 HoleBoundaryEstimation<PointT>::spacingOf (int local) const
 {
@@ -196,30 +276,34 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
   struct RimPoint
   {
     int local;
-    Eigen::Vector3f gap;
+    AngularGap gap;
     float spacing;
   };
   const std::size_t n = positions_.size ();
   const int threads = resolveThreadCount (threads_);
   std::vector<RimPoint> rim_points;
   std::mutex rim_mutex;  // rim points are few: a lock per rim point is cheap
-  std::vector<float> spacing_of (n, 0.f);
+  std::vector<float> spacing_of (n, 0.f), pitch_of (n, 0.f);
   auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
     if (count == 0)
       return;
     // The nearest distinct neighbour: duplicates say nothing about spacing.
-    float nearest = std::numeric_limits<float>::max ();
+    float nearest = std::numeric_limits<float>::max (), farthest = 0.f;
     for (int j = 0; j < count; ++j)
+    {
       if (d2[j] > 0.f)
         nearest = std::min (nearest, d2[j]);
+      farthest = std::max (farthest, d2[j]);
+    }
     const float spacing = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
     spacing_of[i] = spacing;
     const AngularGap gap =
         largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
+    pitch_of[i] = samplingPitch (farthest, count, gap.angle > angle_threshold_ ? gap.angle : 0.f);
     if (gap.angle > angle_threshold_)
     {
       std::lock_guard<std::mutex> lock (rim_mutex);
-      rim_points.push_back ({static_cast<int> (i), gap.direction, spacing});
+      rim_points.push_back ({static_cast<int> (i), gap, spacing});
     }
   };
   if (!search_)
@@ -247,11 +331,39 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
       test_point (static_cast<std::size_t> (i), ids.data (), d2.data (), static_cast<int> (ids.size ()));
     }
   }
-  double sum = 0.0;
-  for (const float d : spacing_of)
-    sum += d;
+  double sum = 0.0, pitch_sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    sum += spacing_of[i];
+    pitch_sum += pitch_of[i];
+  }
   mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
+  mean_pitch_ = static_cast<float> (pitch_sum / static_cast<double> (n));
   std::sort (rim_points.begin (), rim_points.end (), [] (const auto &a, const auto &b) { return a.local < b.local; });
+  // 1b. Of those, only the points that an empty disc of the minimum hole
+  // size touches: the rest are gaps of the sampling.
+  {
+    std::vector<char> keep (rim_points.size (), 0);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64)
+    for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t> (rim_points.size ()); ++r)
+    {
+      thread_local std::vector<int> ids;
+      thread_local std::vector<float> d2;
+      const int local = rim_points[r].local;
+      nearestUsable (static_cast<std::size_t> (local), k_, ids, d2);
+      float pitch = pitch_of[local];
+      for (const int j : ids)
+        pitch += pitch_of[j];
+      pitch /= static_cast<float> (ids.size () + 1);
+      const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
+      keep[r] = emptyDiscTouches (local, rim_points[r].gap, diameter, pitch) ? 1 : 0;
+    }
+    std::size_t kept = 0;
+    for (std::size_t r = 0; r < rim_points.size (); ++r)
+      if (keep[r])
+        rim_points[kept++] = rim_points[r];
+    rim_points.resize (kept);
+  }
   rim_spacing_.clear ();
   for (const auto &r : rim_points)
     rim_spacing_.push_back ({r.local, r.spacing});
@@ -265,10 +377,10 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
     rim.push_back (r.local);
     rim_positions.push_back (positions_[r.local]);
     rim_normals.push_back (normals_[r.local]);
-    rim_gaps.push_back (r.gap);
+    rim_gaps.push_back (r.gap.direction);
   }
   const auto traced = traceBoundaryLoops (rim_positions, rim_normals, rim_gaps,
-                                          link_factor_ * mean_spacing_, min_loop_points_);
+                                          link_factor_ * mean_pitch_, min_loop_points_);
 
   // 3. Close the gaps along each loop, measure it, tell a hole from a border.
   for (const auto &t : traced)
@@ -288,7 +400,13 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
       loop_gaps.push_back (rim_gaps[m]);
     }
     measure (loop);
+    float pitch = 0.f;
+    for (const int m : t.members)
+      pitch += pitch_of[rim[m]];
+    loop.pitch = pitch / static_cast<float> (t.members.size ());
+    const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
     loop.is_hole = loop.closed && gapsPointInside (loop_positions, loop_gaps) &&
+                   loop.diameter >= min_diameter &&
                    (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
     loops.push_back (std::move (loop));
   }
@@ -338,3 +456,4 @@ HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature
 }  // namespace pcl_holefill
 
 #define PCL_INSTANTIATE_HoleBoundaryEstimation(T) template class pcl_holefill::HoleBoundaryEstimation<T>;
+

@@ -1,0 +1,507 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "corpus.h"
+
+#include "off_mesh.h"
+
+#include <pcl_holefill/point_grid.h>
+
+#include <pcl/features/normal_3d.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/search/kdtree.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace corpus
+{
+namespace
+{
+using V = Eigen::Vector3d;
+using pcl_holefill::shapes::Face;
+
+V
+faceNormal (const Face &f)
+{
+  V n = V::Zero ();
+  for (std::size_t i = 0; i < f.corners.size (); ++i)
+    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
+  return n.normalized ();
+}
+
+pcl::PointNormal
+makePoint (const V &p, const V &n)
+{
+  pcl::PointNormal q;
+  q.getVector3fMap () = p.cast<float> ();
+  q.getNormalVector3fMap () = n.cast<float> ();
+  q.curvature = 0.f;
+  return q;
+}
+
+/** Uniform random points by area, with exact normals. */
+class SurfaceDarts
+{
+public:
+  SurfaceDarts (const Shape &shape, unsigned seed) : shape_ (shape), rng_ (seed)
+  {
+    for (const auto &f : shape.faces)
+      for (std::size_t k = 1; k + 1 < f.corners.size (); ++k)
+      {
+        triangles_.push_back ({f.corners[0], f.corners[k], f.corners[k + 1], faceNormal (f)});
+        const double a = 0.5 * (f.corners[k] - f.corners[0]).cross (f.corners[k + 1] - f.corners[0]).norm ();
+        cumulative_.push_back ((cumulative_.empty () ? 0.0 : cumulative_.back ()) + a);
+      }
+  }
+
+  pcl::PointNormal
+  next ()
+  {
+    if (shape_.radius > 0.0)
+    {
+      V d (gauss_ (rng_), gauss_ (rng_), gauss_ (rng_));
+      d.normalize ();
+      return makePoint (shape_.centre + shape_.radius * d, d);
+    }
+    const double pick = unit_ (rng_) * cumulative_.back ();
+    const std::size_t t = std::min<std::size_t> (
+        triangles_.size () - 1, std::lower_bound (cumulative_.begin (), cumulative_.end (), pick) - cumulative_.begin ());
+    double a = unit_ (rng_), b = unit_ (rng_);
+    if (a + b > 1.0)
+    {
+      a = 1.0 - a;
+      b = 1.0 - b;
+    }
+    const Triangle &tr = triangles_[t];
+    return makePoint (tr.a + a * (tr.b - tr.a) + b * (tr.c - tr.a), tr.n);
+  }
+
+  double
+  uniform ()
+  {
+    return unit_ (rng_);
+  }
+
+private:
+  struct Triangle
+  {
+    V a, b, c, n;
+  };
+  const Shape &shape_;
+  std::mt19937 rng_;
+  std::normal_distribution<double> gauss_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  std::vector<Triangle> triangles_;
+  std::vector<double> cumulative_;
+};
+
+void
+finish (Cloud &cloud)
+{
+  cloud.width = static_cast<std::uint32_t> (cloud.size ());
+  cloud.height = 1;
+  cloud.is_dense = true;
+}
+
+/** Dart throwing: keeps a dart when no kept point lies closer than
+  * min_distance(dart). Stops after \a darts darts or \a points kept. */
+template <typename MinDistance> Cloud
+poissonDisk (SurfaceDarts &darts, std::size_t points, std::size_t max_darts, float largest, MinDistance min_distance)
+{
+  Cloud out;
+  pcl_holefill::PointGrid kept (largest);
+  std::vector<pcl_holefill::PointGrid::Neighbour> near;
+  for (std::size_t d = 0; d < max_darts && out.size () < points; ++d)
+  {
+    const pcl::PointNormal p = darts.next ();
+    kept.withinRadius (p.getVector3fMap (), min_distance (p.getVector3fMap ()), near, 1);
+    if (!near.empty ())
+      continue;
+    kept.insert (p.getVector3fMap (), static_cast<int> (out.size ()));
+    out.push_back (p);
+  }
+  return out;
+}
+
+/** Lines of a scanner: dense random darts kept in thin slabs between
+  * parallel planes, then thinned along each line. Two scan directions, so
+  * that no part of the surface lies parallel to the planes of both. */
+Cloud
+scanLines (const Shape &shape, SurfaceDarts &darts, std::size_t points)
+{
+  const double p = pitch (shape, points);
+  const double across = 2.0 * p, along = 0.5 * p;  // 4 times denser along a line
+  const V first = V (1.0, 0.6, 0.35).normalized ();
+  const V second = first.unitOrthogonal ();
+  Cloud slab;
+  const std::size_t candidates = 60 * points;
+  for (std::size_t d = 0; d < candidates; ++d)
+  {
+    const pcl::PointNormal q = darts.next ();
+    const V n = q.getNormalVector3fMap ().cast<double> ();
+    // The direction whose planes cross this part of the surface most steeply.
+    const V s = std::abs (n.dot (first)) < 0.7 ? first : second;
+    const V x = q.getVector3fMap ().cast<double> ();
+    // Lines spaced 'across' on the surface: plane spacing scaled by the tilt.
+    const double tilt = std::sqrt (std::max (1e-6, 1.0 - n.dot (s) * n.dot (s)));
+    const double u = x.dot (s) / (across * tilt);
+    if (std::abs (u - std::round (u)) < 0.04)
+      slab.push_back (q);
+  }
+  Cloud out;
+  pcl_holefill::PointGrid kept (static_cast<float> (along));
+  std::vector<pcl_holefill::PointGrid::Neighbour> near;
+  for (const auto &q : slab)
+  {
+    kept.withinRadius (q.getVector3fMap (), static_cast<float> (0.9 * along), near, 1);
+    if (!near.empty ())
+      continue;
+    kept.insert (q.getVector3fMap (), static_cast<int> (out.size ()));
+    out.push_back (q);
+  }
+  return out;
+}
+
+Cloud
+voxelDownsampled (const Shape &shape, SurfaceDarts &darts, std::size_t points)
+{
+  Cloud::Ptr dense (new Cloud);
+  for (std::size_t i = 0; i < 12 * points; ++i)
+    dense->push_back (darts.next ());
+  finish (*dense);
+  pcl::VoxelGrid<pcl::PointNormal> grid;
+  grid.setInputCloud (dense);
+  const float leaf = static_cast<float> (1.15 * pitch (shape, points));
+  grid.setLeafSize (leaf, leaf, leaf);
+  Cloud out;
+  grid.filter (out);
+  for (auto &q : out)  // VoxelGrid averages normals: make them unit again
+    q.getNormalVector3fMap ().normalize ();
+  return out;
+}
+
+/** Appends a closed convex polygon, oriented so that its normal agrees with \a outward. */
+void
+addFace (Shape &s, std::vector<V> corners, const V &outward)
+{
+  Face f{corners};
+  if (faceNormal (f).dot (outward) < 0.0)
+    std::reverse (f.corners.begin (), f.corners.end ());
+  s.faces.push_back (f);
+}
+
+/** An axis-aligned box as six outward faces. */
+void
+addBox (Shape &s, const V &lo, const V &hi)
+{
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      std::vector<V> c;
+      for (const auto &uv : {std::pair<int, int>{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+      {
+        V p;
+        p[axis] = side ? hi[axis] : lo[axis];
+        p[u] = uv.first ? hi[u] : lo[u];
+        p[v] = uv.second ? hi[v] : lo[v];
+        c.push_back (p);
+      }
+      V out = V::Zero ();
+      out[axis] = side ? 1.0 : -1.0;
+      addFace (s, c, out);
+    }
+}
+}  // namespace
+
+const char *
+toString (Sampling s)
+{
+  switch (s)
+  {
+  case Sampling::kRandom: return "random";
+  case Sampling::kPoisson: return "poisson";
+  case Sampling::kJittered: return "jittered";
+  case Sampling::kVoxel: return "voxel";
+  case Sampling::kScan: return "scan";
+  case Sampling::kVarying: return "varying";
+  }
+  return "?";
+}
+
+std::vector<Sampling>
+allSamplings ()
+{
+  return {Sampling::kRandom, Sampling::kPoisson, Sampling::kJittered,
+          Sampling::kVoxel,  Sampling::kScan,    Sampling::kVarying};
+}
+
+double
+pitch (const Shape &shape, std::size_t points)
+{
+  return std::sqrt (shape.area () / std::max<std::size_t> (points, 1));
+}
+
+double
+diagonal (const Shape &shape)
+{
+  if (shape.radius > 0.0)
+    return 2.0 * std::sqrt (3.0) * shape.radius;
+  V lo = V::Constant (1e300), hi = V::Constant (-1e300);
+  for (const auto &f : shape.faces)
+    for (const auto &c : f.corners)
+    {
+      lo = lo.cwiseMin (c);
+      hi = hi.cwiseMax (c);
+    }
+  return (hi - lo).norm ();
+}
+
+Cloud
+sampleSurface (const Shape &shape, std::size_t points, Sampling sampling, unsigned seed)
+{
+  SurfaceDarts darts (shape, seed);
+  const float p = static_cast<float> (pitch (shape, points));
+  Cloud out;
+  switch (sampling)
+  {
+  case Sampling::kRandom:
+    for (std::size_t i = 0; i < points; ++i)
+      out.push_back (darts.next ());
+    break;
+  case Sampling::kPoisson:
+    out = poissonDisk (darts, points, 30 * points, 0.8f * p, [p] (const Eigen::Vector3f &) { return 0.8f * p; });
+    break;
+  case Sampling::kJittered:
+    out = shape.sample (points, seed);
+    break;
+  case Sampling::kVoxel:
+    out = voxelDownsampled (shape, darts, points);
+    break;
+  case Sampling::kScan:
+    out = scanLines (shape, darts, points);
+    break;
+  case Sampling::kVarying:
+  {
+    // Pitch from 0.63 p to 1.26 p along x (density 4 times higher at x = 0
+    // than at x = 1): the mean density stays about the same.
+    out = poissonDisk (darts, 4 * points, 40 * points, 1.0f * p, [p] (const Eigen::Vector3f &x) {
+      return 0.8f * p * 0.63f * std::pow (2.f, std::clamp (x.x (), 0.f, 1.f));
+    });
+    break;
+  }
+  }
+  finish (out);
+  return out;
+}
+
+void
+addNoise (Cloud &cloud, const Shape &shape, double fraction, unsigned seed)
+{
+  if (fraction > 0.0)
+    pcl_holefill::shapes::addNormalNoise (cloud, fraction * diagonal (shape), seed);
+}
+
+void
+estimateNormals (Cloud &cloud)
+{
+  Cloud::Ptr input (new Cloud (cloud));
+  pcl::NormalEstimation<pcl::PointNormal, pcl::Normal> estimation;
+  estimation.setInputCloud (input);
+  estimation.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
+  estimation.setKSearch (16);
+  pcl::PointCloud<pcl::Normal> normals;
+  estimation.compute (normals);
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+  {
+    Eigen::Vector3f n = normals[i].getNormalVector3fMap ();
+    if (!n.allFinite ())
+      continue;  // keeps the exact normal: PCL gives none for degenerate neighbourhoods
+    if (n.dot (cloud[i].getNormalVector3fMap ()) < 0.f)
+      n = -n;
+    cloud[i].getNormalVector3fMap () = n;
+    cloud[i].curvature = normals[i].curvature;
+  }
+}
+
+Shape
+cylinder ()
+{
+  Shape s;
+  s.name = "cylinder";
+  s.closed = true;
+  const int segments = 128;
+  const double r = 0.3, z0 = 0.1, z1 = 0.9;
+  std::vector<V> bottom, top;
+  for (int i = 0; i < segments; ++i)
+  {
+    const double a = 2.0 * M_PI * i / segments, b = 2.0 * M_PI * (i + 1) / segments;
+    const V pa (0.5 + r * std::cos (a), 0.5 + r * std::sin (a), 0.0);
+    const V pb (0.5 + r * std::cos (b), 0.5 + r * std::sin (b), 0.0);
+    const double mid = 0.5 * (a + b);
+    addFace (s, {pa + V (0, 0, z0), pb + V (0, 0, z0), pb + V (0, 0, z1), pa + V (0, 0, z1)},
+             V (std::cos (mid), std::sin (mid), 0.0));
+    bottom.push_back (pa + V (0, 0, z0));
+    top.push_back (pa + V (0, 0, z1));
+  }
+  addFace (s, bottom, V (0, 0, -1));
+  addFace (s, top, V (0, 0, 1));
+  return s;
+}
+
+Shape
+torus ()
+{
+  Shape s;
+  s.name = "torus";
+  s.closed = true;
+  const int nu = 128, nv = 48;
+  const double R = 0.32, r = 0.14;
+  auto point = [&] (int i, int j) {
+    const double u = 2.0 * M_PI * i / nu, v = 2.0 * M_PI * j / nv;
+    return V (0.5 + (R + r * std::cos (v)) * std::cos (u), 0.5 + (R + r * std::cos (v)) * std::sin (u),
+              0.5 + r * std::sin (v));
+  };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = 2.0 * M_PI * (i + 0.5) / nu, v = 2.0 * M_PI * (j + 0.5) / nv;
+      const V outward (std::cos (v) * std::cos (u), std::cos (v) * std::sin (u), std::sin (v));
+      addFace (s, {point (i, j), point (i + 1, j), point (i + 1, j + 1), point (i, j + 1)}, outward);
+    }
+  return s;
+}
+
+Shape
+fin ()
+{
+  Shape s;
+  s.name = "fin";
+  s.closed = true;
+  addBox (s, V (0.05, 0.2, 0.48), V (0.95, 0.8, 0.52));
+  return s;
+}
+
+Shape
+lBlock ()
+{
+  Shape s;
+  s.name = "lblock";
+  s.closed = true;
+  // The L in the x-z plane, extruded along y: x in [0.1,0.9], z in [0.1,0.9],
+  // the quadrant x > 0.5, z > 0.5 removed (a concave edge along y at x = z = 0.5).
+  const double y0 = 0.2, y1 = 0.8;
+  const std::vector<std::pair<double, double>> l = {{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.5}, {0.5, 0.5}, {0.5, 0.9}, {0.1, 0.9}};
+  const std::size_t n = l.size ();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto &a = l[i], &b = l[(i + 1) % n];
+    const V out = V (b.second - a.second, 0.0, -(b.first - a.first)).normalized ();  // the L runs counter-clockwise in x-z
+    addFace (s, {V (a.first, y0, a.second), V (b.first, y0, b.second), V (b.first, y1, b.second), V (a.first, y1, a.second)},
+             out);
+  }
+  // The two L-shaped ends as convex pieces.
+  for (const double y : {y0, y1})
+  {
+    const V out (0.0, y == y0 ? -1.0 : 1.0, 0.0);
+    addFace (s, {V (0.1, y, 0.1), V (0.9, y, 0.1), V (0.9, y, 0.5), V (0.1, y, 0.5)}, out);
+    addFace (s, {V (0.1, y, 0.5), V (0.5, y, 0.5), V (0.5, y, 0.9), V (0.1, y, 0.9)}, out);
+  }
+  return s;
+}
+
+bool
+fandisk (Shape &shape, std::string &error)
+{
+#ifdef PCL_HOLEFILL_FANDISK
+  return bench::readOffMesh (PCL_HOLEFILL_FANDISK, shape, error) && (shape.name = "fandisk", true);
+#else
+  error = "fandisk.off was not found at configure time (apt-get install libcgal-demo)";
+  return false;
+#endif
+}
+
+CutCloud
+build (const Case &c)
+{
+  Cloud cloud = sampleSurface (c.shape, c.points, c.sampling, c.seed);
+  addNoise (cloud, c.shape, c.noise, c.seed + 101);
+  if (c.estimated)
+    estimateNormals (cloud);
+  return pcl_holefill::shapes::cutHoles (cloud, c.holes);
+}
+
+DetectionScore
+scoreDetection (const std::vector<std::vector<Eigen::Vector3f>> &hole_loops, const std::vector<Ball> &holes,
+                double pitch)
+{
+  DetectionScore score;
+  score.cut = holes.size ();
+  std::vector<char> found (holes.size (), 0);
+  for (const auto &loop : hole_loops)
+  {
+    bool matched = false;
+    for (std::size_t b = 0; b < holes.size (); ++b)
+    {
+      std::size_t near = 0;
+      for (const auto &p : loop)
+        near += (p.cast<double> () - holes[b].centre).norm () <= holes[b].radius + 3.0 * pitch ? 1 : 0;
+      if (2 * near > loop.size ())
+      {
+        found[b] = 1;
+        matched = true;
+      }
+    }
+    score.false_holes += matched ? 0 : 1;
+  }
+  score.found = static_cast<std::size_t> (std::count (found.begin (), found.end (), 1));
+  return score;
+}
+
+}  // namespace corpus
+
+namespace corpus
+{
+std::vector<Ball>
+holesOf (const Shape &shape, std::size_t points)
+{
+  const double p = pitch (shape, points);
+  const std::string &n = shape.name;
+  // radius in pitches: diameters 10 .. 30 pitches
+  auto ball = [p] (const V &c, double diameter_in_pitches) { return Ball{c, 0.5 * diameter_in_pitches * p}; };
+  if (n == "cube")
+    return {ball (V (1, 1, 1), 20), ball (V (0, 0.5, 0), 14), ball (V (0.5, 0.5, 1), 10)};
+  if (n == "sphere")
+    return {ball (V (0.5, 0.5, 1.0), 24), ball (V (1.0, 0.5, 0.5), 10)};
+  if (n == "pyramid")
+    return {ball (V (0.5, 0.5, 1.0), 16), ball (V (0.75, 0.75, 0.5), 12)};
+  if (n == "dihedral")
+    return {ball (V (0.5, 0.5, 1.0), 16), ball (V (0.5, 0.25, 0.75), 10)};
+  if (n == "cylinder")
+    return {ball (V (0.8, 0.5, 0.9), 14), ball (V (0.2, 0.5, 0.5), 16)};
+  if (n == "torus")
+    return {ball (V (0.5, 0.82, 0.5 + 0.14), 10), ball (V (0.5 - 0.46, 0.5, 0.5), 12)};
+  if (n == "fin")
+    return {ball (V (0.5, 0.5, 0.52), 12), ball (V (0.95, 0.5, 0.5), 10)};
+  if (n == "lblock")
+    return {ball (V (0.5, 0.5, 0.5), 14), ball (V (0.9, 0.2, 0.1), 14), ball (V (0.3, 0.5, 0.9), 10)};
+  return {};
+}
+
+std::vector<Shape>
+models ()
+{
+  using namespace pcl_holefill::shapes;
+  std::vector<Shape> all = {cube (), sphere (), openPyramid (), dihedral (), cylinder (), torus (), fin (), lBlock ()};
+  Shape f;
+  std::string error;
+  if (fandisk (f, error))
+    all.push_back (f);
+  return all;
+}
+}  // namespace corpus

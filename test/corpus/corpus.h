@@ -1,0 +1,120 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_holefill/shapes.h>
+
+#include <string>
+#include <vector>
+
+/** \brief The robustness corpus: every model sampled in the ways users'
+  * clouds are made, with noise and estimated normals, holes cut with known
+  * ground truth. Deterministic (seeded). Test and bench code only: never
+  * installed, never linked into the library. */
+namespace corpus
+{
+using pcl_holefill::shapes::Ball;
+using pcl_holefill::shapes::Cloud;
+using pcl_holefill::shapes::CutCloud;
+using pcl_holefill::shapes::Shape;
+
+/** How the surface is turned into points. */
+enum class Sampling
+{
+  kRandom,    //!< uniform random by area (white noise, as mesh-sampling tools)
+  kPoisson,   //!< maximal Poisson-disk (blue noise)
+  kJittered,  //!< a jittered grid per face (Fibonacci lattice on the sphere)
+  kVoxel,     //!< dense random sampling, then PCL VoxelGrid (as pcl_mesh_sampling)
+  kScan,      //!< points along parallel lines, 4 times denser along a line than across
+  kVarying    //!< Poisson-disk whose density varies 4 times across the model
+};
+
+const char *
+toString (Sampling s);
+
+/** Every sampling, in a fixed order. */
+std::vector<Sampling>
+allSamplings ();
+
+/** \brief About \a points samples of \a shape with exact unit normals. */
+Cloud
+sampleSurface (const Shape &shape, std::size_t points, Sampling sampling, unsigned seed);
+
+/** \brief The sampling pitch sqrt(area / points): the spacing that the
+  * corpus states hole sizes and errors in (independent of the sampler,
+  * unlike the nearest-neighbour distance, which is 0.5 pitch for random
+  * sampling and 0.9 for Poisson-disk). */
+double
+pitch (const Shape &shape, std::size_t points);
+
+/** \brief Length of the diagonal of the shape's bounding box. */
+double
+diagonal (const Shape &shape);
+
+/** \brief Moves each point along its exact normal by Gaussian noise of std
+  * \a fraction times the bounding-box diagonal. */
+void
+addNoise (Cloud &cloud, const Shape &shape, double fraction, unsigned seed);
+
+/** \brief Replaces the normals by PCL's NormalEstimation (k = 16), each
+  * oriented to agree with the exact normal it replaces. */
+void
+estimateNormals (Cloud &cloud);
+
+// Shapes of the corpus beyond the paper's (all in the unit cube).
+Shape cylinder ();  //!< closed, axis z, radius 0.3, height 0.8, meshed finely
+Shape torus ();     //!< major radius 0.32, minor 0.14, axis z, meshed finely
+Shape fin ();       //!< a thin plate 0.9 x 0.6 x 0.04: two faces close together
+Shape lBlock ();    //!< an L-shaped solid: convex and concave edges
+
+/** \brief fandisk from Debian's libcgal-demo (data.tar.gz), scaled into the
+  * unit cube; false when the package is not installed. */
+bool
+fandisk (Shape &shape, std::string &error);
+
+/** \brief A test case: a model, a sampling, and holes to cut. */
+struct Case
+{
+  std::string name;
+  Shape shape;
+  std::size_t points = 0;
+  Sampling sampling = Sampling::kPoisson;
+  double noise = 0.0;      //!< fraction of the bounding-box diagonal
+  bool estimated = false;  //!< normals from NormalEstimation instead of exact
+  std::vector<Ball> holes;
+  unsigned seed = 1;
+};
+
+/** \brief The case's cloud, cut: kept (the input to fill) and removed. */
+CutCloud
+build (const Case &c);
+
+/** \brief How detection did on one case: a cut ball is found when a hole
+  * loop lies around it (most loop points within its radius plus 3 pitches).*/
+struct DetectionScore
+{
+  std::size_t cut = 0;
+  std::size_t found = 0;
+  std::size_t false_holes = 0;
+};
+
+DetectionScore
+scoreDetection (const std::vector<std::vector<Eigen::Vector3f>> &hole_loops, const std::vector<Ball> &holes,
+                double pitch);
+
+}  // namespace corpus
+
+namespace corpus
+{
+/** \brief Holes on \a shape for the corpus: a corner or apex, an edge, a
+  * smooth or flat part, as available, of diameters between 8 and 30 pitches
+  * for a cloud of \a points. Empty for a hole-free model. */
+std::vector<Ball>
+holesOf (const Shape &shape, std::size_t points);
+
+/** \brief The models of the corpus (fandisk when libcgal-demo is there). */
+std::vector<Shape>
+models ();
+}  // namespace corpus

@@ -61,6 +61,8 @@ usage (const char *program)
       << "  -max_passes N     bound on passes per hole (1..100000)                           (200)\n"
       << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
       << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
+      << "  -min_hole_size P  smallest hole, as an empty disc P sampling pitches across\n"
+      << "                    (pitch = sqrt(area per point); under 5, random gaps count) (6)\n"
       << "  -max_hole_size D  leave holes wider than D alone; 0 = fill all                  (0)\n"
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
       << "                    the detected holes\n"
@@ -81,6 +83,7 @@ parseOptions (int argc, char **argv, Options &options, std::string &error)
       {"-sigma_d", {&Options::sigma_d, 0.f, 1e30f}},     {"-shrink", {&Options::shrink, 1.f, 100.f}},
       {"-ratio", {&Options::ratio, 0.f, 0.999f}},        {"-spacing", {&Options::spacing, 0.25f, 10.f}},
       {"-max_hole_size", {&Options::max_hole_size, 0.f, 1e30f}},
+      {"-min_hole_size", {&Options::min_hole_size, 2.f, 100.f}},
   };
   const std::map<std::string, std::string Options::*> strings{
       {"-holes", &Options::holes_file}, {"-report", &Options::report_file},
@@ -198,6 +201,7 @@ configure (const Options &options, pcl_holefill::HoleFilling<pcl::PointNormal> &
   filler.setFirstOrder (!options.zero_order);
   filler.setDenoise (options.denoise);
   filler.setMaxHoleDiameter (options.max_hole_size);
+  filler.setMinHoleSize (options.min_hole_size);
   filler.setNumberOfThreads (static_cast<unsigned int> (options.threads));
 }
 

@@ -28,6 +28,7 @@ struct Options
   bool zero_order = false;
   bool denoise = false;
   float max_hole_size = 0.f;
+  float min_hole_size = 6.f;
   std::string holes_file, report_file, png_file, demo_dir;
   int threads = 0;
   bool quiet = false;

@@ -43,7 +43,8 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"first_output_index\": " << r.first_output_index << ", \"termination\": \""
         << pcl_holefill::toString (r.termination) << "\", \"closed\": " << (r.closed ? "true" : "false")
         << ", \"spacing\": " << r.spacing << ", \"equilibrium_distance\": " << r.equilibrium_distance
-        << ", \"radius\": " << r.radius << "}";
+        << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
+        << ", \"first_order\": " << (r.first_order ? "true" : "false") << "}";
   }
   out << (reports.empty () ? "]" : "\n  ]") << "\n}\n";
   return out.str ();

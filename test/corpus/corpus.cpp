@@ -488,6 +488,8 @@ holesOf (const Shape &shape, std::size_t points)
     return {ball (V (0.5, 0.82, 0.5 + 0.14), 10), ball (V (0.5 - 0.46, 0.5, 0.5), 12)};
   if (n == "fin")
     return {ball (V (0.5, 0.5, 0.52), 12), ball (V (0.95, 0.5, 0.5), 10)};
+  if (n == "fandisk")
+    return {ball (bench::sharpCorner (shape), 14), ball (bench::sharpEdgePoint (shape), 12)};
   if (n == "lblock")
     return {ball (V (0.5, 0.5, 0.5), 14), ball (V (0.9, 0.2, 0.1), 14), ball (V (0.3, 0.5, 0.9), 10)};
   return {};

@@ -111,6 +111,14 @@ public:
   void setDenoise (bool on) { denoise_ = on; }
   bool getDenoise () const { return denoise_; }
 
+  /** \brief Smallest hole filled: the diameter of the empty disc it must
+    * hold, in local sampling pitches (sqrt of the surface area per point).
+    * \param[in] pitches default 6, range 2..100; below 5 the gaps of
+    * uniformly random sampling are taken for holes
+    * (HoleBoundaryEstimation::setMinHoleSize). */
+  void setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
+  float getMinHoleSize () const { return min_hole_pitches_; }
+
   void setMaxHoleDiameter (float d) { max_hole_diameter_ = d; }
   float getMaxHoleDiameter () const { return max_hole_diameter_; }
 
@@ -176,6 +184,7 @@ private:
   bool combination_constraint_ = true;
   bool denoise_ = false;
   float max_hole_diameter_ = 0.f;
+  float min_hole_pitches_ = 6.f;
   std::vector<BoundaryLoop> user_holes_;
   SearchPtr search_;
   unsigned int threads_ = 0;

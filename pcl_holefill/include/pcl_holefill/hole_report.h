@@ -35,6 +35,8 @@ struct HoleReport
   float spacing = 0.f;                 //!< mean input spacing around the rim
   float equilibrium_distance = 0.f;    //!< d_eq used
   float radius = 0.f;                  //!< r of the first pass
+  float noise = 0.f;                   //!< RMS distance of the rim's neighbours to their fitted plane
+  bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
 };
 
 }  // namespace pcl_holefill

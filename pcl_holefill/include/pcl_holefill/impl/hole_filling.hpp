@@ -19,6 +19,8 @@
 #include <pcl_holefill/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
+#include <pcl/common/centroid.h>
+#include <pcl/common/eigen.h>
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
 
@@ -40,8 +42,43 @@ constexpr float kBoundScale = 1.5f;
 constexpr float kClosedFrontDiameter = 4.f;
 // More neighbouring normals than this pointing opposite ways: not oriented.
 constexpr float kMaxFlippedShare = 0.02f;
-// Tolerance of the combination constraint, in mean spacings.
+// Tolerance of the combination constraint, in mean spacings, on clean data...
 constexpr float kToleranceInSpacings = 0.1f;
+// ... and in standard deviations of the rim's noise on noisy data: a noisy
+// neighbour lies that far off its own tangent plane, and would otherwise
+// make every candidate near it look like an overshoot (the fill then stops).
+constexpr float kToleranceInNoiseSigmas = 2.5f;
+// Above this rim noise (in mean spacings) the first-order extension is off.
+constexpr float kFirstOrderMaxNoiseInSpacings = 0.1f;
+// The noise is measured in a ball of this many mean spacings around each rim point.
+constexpr float kNoiseReachInSpacings = 2.5f;
+
+/** The noise of the surface around a rim: the median, over rim points, of
+  * the RMS distance of their neighbours to the best-fitting plane. */
+template <typename PointT> float
+rimNoise (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+          float reach)
+{
+  std::vector<float> rms;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : rim)
+  {
+    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < 5)
+      continue;
+    EIGEN_ALIGN16 Eigen::Matrix3f covariance;
+    Eigen::Vector4f centroid;
+    if (pcl::computeMeanAndCovarianceMatrix (cloud, found, covariance, centroid) == 0)
+      continue;
+    EIGEN_ALIGN16 Eigen::Vector3f values;
+    pcl::eigen33 (covariance, values);
+    rms.push_back (std::sqrt (std::max (0.f, values[0])));
+  }
+  if (rms.empty ())
+    return 0.f;
+  std::nth_element (rms.begin (), rms.begin () + rms.size () / 2, rms.end ());
+  return rms[rms.size () / 2];
+}
 }  // namespace detail
 
 template <typename PointT> bool
@@ -69,6 +106,8 @@ HoleFilling<PointT>::checkParameters () const
     bad = "max boundary growth (>= 1)";
   else if (!non_negative (max_hole_diameter_))
     bad = "max hole diameter (>= 0, 0 = no limit)";
+  else if (!(min_hole_pitches_ >= 2.f && min_hole_pitches_ <= 100.f))
+    bad = "min hole size (2..100 pitches)";
   if (bad)
   {
     PCL_ERROR ("[pcl_holefill::HoleFilling] Invalid parameter: %s. Nothing filtered.\n", bad);
@@ -89,6 +128,7 @@ HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const Sear
     if (search_)  // the user's; without one, detection's own cell-by-cell pass is faster
       estimation.setSearchMethod (search);
     estimation.setMaxHoleDiameter (max_hole_diameter_);
+    estimation.setMinHoleSize (min_hole_pitches_);
     estimation.setNumberOfThreads (threads_);
     std::vector<BoundaryLoop> loops;
     estimation.compute (loops);
@@ -311,9 +351,19 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   sampler.setInputCloud (local);
   sampler.setSearchMethod (local_search);
   sampler.setSigmaN (sigma_n_);
-  sampler.setFirstOrder (first_order_);
   sampler.setEquilibriumDistance (d_eq);
-  sampler.setConstraintTolerance (detail::kToleranceInSpacings * h);
+  pcl::Indices local_rim;
+  for (const auto i : rim)
+    if (local_index.count (i))
+      local_rim.push_back (local_index[i]);
+  report.noise = detail::rimNoise (*local, *local_search, local_rim, detail::kNoiseReachInSpacings * h);
+  // The first-order extension extrapolates the rim's curvature from its
+  // normals: on a noisy rim (whose normals, estimated from the noisy points,
+  // are noisy too) it extrapolates the noise, and the patch runs away.
+  report.first_order = first_order_ && report.noise <= detail::kFirstOrderMaxNoiseInSpacings * h;
+  sampler.setFirstOrder (report.first_order);
+  sampler.setConstraintTolerance (
+      std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));
   sampler.setCombinationConstraint (combination_constraint_);
   sampler.setBoundingBall (centroid, bound);
 

@@ -1,0 +1,229 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * A slice of the robustness corpus (test/corpus): every sampling at least
+ * once, clean and noisy, exact and estimated normals, hole-free clouds.
+ * Ground truth is the model's exact surface and the balls that were cut,
+ * never a figure the code under test computed. Bounds are what the code
+ * reached on these seeds plus the margin stated at each.
+ */
+#include "corpus.h"
+
+#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/hole_filling.h>
+
+#include <pcl/console/print.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <tuple>
+
+namespace
+{
+using corpus::Sampling;
+using pcl_holefill::shapes::Cloud;
+
+struct Outcome
+{
+  corpus::DetectionScore detection;
+  pcl_holefill::shapes::FillQuality fill;
+  std::size_t input = 0, output = 0;
+};
+
+Outcome
+fillCase (const corpus::Case &c)
+{
+  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
+  const auto cut = corpus::build (c);
+  Cloud::Ptr kept (new Cloud (cut.kept));
+  const double pitch = corpus::pitch (c.shape, c.points);
+  Outcome o;
+  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (kept);
+  std::vector<pcl_holefill::BoundaryLoop> loops;
+  estimation.compute (loops);
+  std::vector<std::vector<Eigen::Vector3f>> holes;
+  for (const auto &l : loops)
+    if (l.is_hole)
+    {
+      holes.emplace_back ();
+      for (const auto i : l.indices)
+        holes.back ().push_back ((*kept)[i].getVector3fMap ());
+    }
+  o.detection = corpus::scoreDetection (holes, c.holes, pitch);
+  pcl_holefill::HoleFilling<pcl::PointNormal> filler;  // no option at all
+  filler.setInputCloud (kept);
+  Cloud output;
+  filler.filter (output);
+  o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, pitch);
+  o.input = kept->size ();
+  o.output = output.size ();
+  return o;
+}
+
+corpus::Case
+makeCase (const pcl_holefill::shapes::Shape &shape, Sampling sampling, double noise, bool estimated, bool holes)
+{
+  corpus::Case c;
+  c.shape = shape;
+  c.points = 20000;
+  c.sampling = sampling;
+  c.noise = noise;
+  c.estimated = estimated;
+  if (holes)
+    c.holes = corpus::holesOf (shape, c.points);
+  return c;
+}
+
+const std::vector<Sampling> kSamplings = corpus::allSamplings ();
+
+std::string
+samplingName (const testing::TestParamInfo<std::tuple<int, int>> &info)
+{
+  static const char *models[] = {"cube", "sphere", "torus", "lblock", "fin"};
+  return std::string (models[std::get<0> (info.param)]) + "_" + corpus::toString (kSamplings[std::get<1> (info.param)]);
+}
+
+pcl_holefill::shapes::Shape
+model (int i)
+{
+  using namespace pcl_holefill::shapes;
+  switch (i)
+  {
+  case 0: return cube ();
+  case 1: return sphere ();
+  case 2: return corpus::torus ();
+  case 3: return corpus::lBlock ();
+  default: return corpus::fin ();
+  }
+}
+}  // namespace
+
+// The pitch means the same for every sampler: sqrt(area per point).
+TEST (SamplingPitch, MatchesTheAreaPerPointOfEverySampler)
+{
+  const auto shape = pcl_holefill::shapes::flatPatch ();
+  for (const auto s : kSamplings)
+  {
+    const Cloud cloud = corpus::sampleSurface (shape, 10000, s, 3);
+    pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+    estimation.setInputCloud (Cloud::Ptr (new Cloud (cloud)));
+    std::vector<pcl_holefill::BoundaryLoop> loops;
+    estimation.compute (loops);
+    const double truth = std::sqrt (shape.area () / cloud.size ());
+    // 10 %: the estimate from 16 neighbours, averaged over the cloud
+    EXPECT_NEAR (estimation.getMeanPitch (), truth, 0.1 * truth) << corpus::toString (s);
+  }
+}
+
+// A gap of 4 pitches is sampling, one of 9 is a hole (default: 6).
+TEST (MinHoleSize, SeparatesSmallGapsFromHoles)
+{
+  const auto shape = pcl_holefill::shapes::flatPatch ();
+  const double p = corpus::pitch (shape, 20000);
+  const Cloud cloud = corpus::sampleSurface (shape, 20000, Sampling::kPoisson, 5);
+  const auto cut = pcl_holefill::shapes::cutHoles (
+      cloud, {{Eigen::Vector3d (0.3, 0.5, 0.5), 2.0 * p}, {Eigen::Vector3d (0.7, 0.5, 0.5), 4.5 * p}});
+  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (Cloud::Ptr (new Cloud (cut.kept)));
+  std::vector<pcl_holefill::BoundaryLoop> loops;
+  estimation.compute (loops);
+  std::size_t holes = 0;
+  for (const auto &l : loops)
+    if (l.is_hole)
+    {
+      ++holes;
+      EXPECT_NEAR ((cut.kept[l.indices[0]].getVector3fMap () - Eigen::Vector3f (0.7f, 0.5f, 0.5f)).norm (), 4.5 * p,
+                   2.0 * p);
+    }
+  EXPECT_EQ (holes, 1u);
+  estimation.setMinHoleSize (3.f);  // now the small gap counts too
+  estimation.compute (loops);
+  holes = 0;
+  for (const auto &l : loops)
+    holes += l.is_hole ? 1 : 0;
+  EXPECT_EQ (holes, 2u);
+}
+
+class HoleFree : public testing::TestWithParam<std::tuple<int, int>>
+{};
+
+// No hole, no point added, every point unchanged: whatever the sampling.
+TEST_P (HoleFree, CloudComesBackUnchanged)
+{
+  const auto c = makeCase (model (std::get<0> (GetParam ())), kSamplings[std::get<1> (GetParam ())], 0.0, false, false);
+  const Outcome o = fillCase (c);
+  EXPECT_EQ (o.detection.false_holes, 0u);
+  EXPECT_EQ (o.output, o.input);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+}
+
+INSTANTIATE_TEST_SUITE_P (EverySampling, HoleFree,
+                          testing::Combine (testing::Values (0, 1, 2), testing::Range (0, 6)), samplingName);
+
+class CleanHoles : public testing::TestWithParam<std::tuple<int, int>>
+{};
+
+// Clean input, exact normals, no option: every hole found, nothing false,
+// covered, on the surface, nothing outside the holes, input untouched.
+TEST_P (CleanHoles, FoundCoveredAndOnTheSurface)
+{
+  const auto c = makeCase (model (std::get<0> (GetParam ())), kSamplings[std::get<1> (GetParam ())], 0.0, false, true);
+  const Outcome o = fillCase (c);
+  const double p = corpus::pitch (c.shape, c.points);
+  EXPECT_EQ (o.detection.found, o.detection.cut);
+  EXPECT_EQ (o.detection.false_holes, 0u);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+  // reached: 94.5 % (the fin's scan lines) to 100 %; margin 2 points
+  EXPECT_GE (o.fill.coverage, 0.925);
+  // reached: up to 1.2 pitches (a scan-line cube's edge); margin 0.8 pitch
+  EXPECT_LE (o.fill.max_error, 2.0 * p);
+  // reached: at most 4 points beyond one pitch outside a cut ball
+  EXPECT_LE (o.fill.outside, 8u);
+}
+
+INSTANTIATE_TEST_SUITE_P (EverySampling, CleanHoles,
+                          testing::Combine (testing::Values (0, 1, 3), testing::Range (0, 6)), samplingName);
+// The thin fin on every sampling but scan lines: there the hole across the
+// fin's thin edge grows off the part (max error 0.067, 23 points outside the
+// cut; an open failure recorded in doc/robustness.md), so it is not claimed.
+INSTANTIATE_TEST_SUITE_P (ThinPart, CleanHoles,
+                          testing::Combine (testing::Values (4), testing::Values (0, 1, 2, 3, 5)), samplingName);
+
+class NoisyHoles : public testing::TestWithParam<std::tuple<int, int>>
+{};
+
+// Noise of 0.3 % of the diagonal along the normal, exact normals.
+TEST_P (NoisyHoles, FoundAndCoveredWithinTheNoise)
+{
+  const double noise = 0.003;
+  const auto c = makeCase (model (std::get<0> (GetParam ())), kSamplings[std::get<1> (GetParam ())], noise, false, true);
+  const Outcome o = fillCase (c);
+  const double sigma = noise * corpus::diagonal (c.shape);
+  EXPECT_EQ (o.detection.found, o.detection.cut);
+  EXPECT_EQ (o.detection.false_holes, 0u);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+  EXPECT_GE (o.fill.coverage, 0.90);            // reached: 91 % to 100 %
+  EXPECT_LE (o.fill.max_error, 5.0 * sigma);   // reached: up to 3.7 sigma
+}
+
+INSTANTIATE_TEST_SUITE_P (EverySampling, NoisyHoles,
+                          testing::Combine (testing::Values (0, 1), testing::Range (0, 6)), samplingName);
+
+// Normals estimated by PCL (k = 16) on clean random samples.
+TEST (EstimatedNormals, RandomSamplesFoundAndCovered)
+{
+  for (const int m : {0, 1, 3})
+  {
+    const auto c = makeCase (model (m), Sampling::kRandom, 0.0, true, true);
+    const Outcome o = fillCase (c);
+    const double p = corpus::pitch (c.shape, c.points);
+    EXPECT_EQ (o.detection.found, o.detection.cut) << c.shape.name;
+    EXPECT_EQ (o.detection.false_holes, 0u) << c.shape.name;
+    EXPECT_GE (o.fill.coverage, 0.95) << c.shape.name;      // reached: 96.8 % to 99.4 %
+    EXPECT_LE (o.fill.max_error, 2.5 * p) << c.shape.name;  // reached: 1.95 pitches (cube, rounded PCA normals)
+  }
+}

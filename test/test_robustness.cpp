@@ -26,42 +26,13 @@ namespace
 using corpus::Sampling;
 using pcl_holefill::shapes::Cloud;
 
-struct Outcome
-{
-  corpus::DetectionScore detection;
-  pcl_holefill::shapes::FillQuality fill;
-  std::size_t input = 0, output = 0;
-};
+using corpus::Outcome;
 
 Outcome
 fillCase (const corpus::Case &c)
 {
   pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-  const auto cut = corpus::build (c);
-  Cloud::Ptr kept (new Cloud (cut.kept));
-  const double pitch = corpus::pitch (c.shape, c.points);
-  Outcome o;
-  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
-  estimation.setInputCloud (kept);
-  std::vector<pcl_holefill::BoundaryLoop> loops;
-  estimation.compute (loops);
-  std::vector<std::vector<Eigen::Vector3f>> holes;
-  for (const auto &l : loops)
-    if (l.is_hole)
-    {
-      holes.emplace_back ();
-      for (const auto i : l.indices)
-        holes.back ().push_back ((*kept)[i].getVector3fMap ());
-    }
-  o.detection = corpus::scoreDetection (holes, c.holes, pitch);
-  pcl_holefill::HoleFilling<pcl::PointNormal> filler;  // no option at all
-  filler.setInputCloud (kept);
-  Cloud output;
-  filler.filter (output);
-  o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, pitch);
-  o.input = kept->size ();
-  o.output = output.size ();
-  return o;
+  return corpus::runCase (c);
 }
 
 corpus::Case

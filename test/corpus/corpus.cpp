@@ -507,3 +507,49 @@ models ()
   return all;
 }
 }  // namespace corpus
+
+#include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/hole_filling.h>
+
+#include <chrono>
+
+namespace corpus
+{
+Outcome
+runCase (const Case &c)
+{
+  const auto cut = build (c);
+  const Cloud::Ptr kept (new Cloud (cut.kept));
+  const double p = pitch (c.shape, c.points);
+  Outcome o;
+  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (kept);
+  std::vector<pcl_holefill::BoundaryLoop> loops;
+  estimation.compute (loops);
+  std::vector<std::vector<Eigen::Vector3f>> holes;
+  for (const auto &l : loops)
+    if (l.is_hole)
+    {
+      holes.emplace_back ();
+      for (const auto i : l.indices)
+        holes.back ().push_back ((*kept)[i].getVector3fMap ());
+    }
+  o.detection = scoreDetection (holes, c.holes, p);
+
+  pcl_holefill::HoleFilling<pcl::PointNormal> filler;  // no option at all
+  filler.setInputCloud (kept);
+  Cloud output;
+  const auto start = std::chrono::steady_clock::now ();
+  filler.filter (output);
+  o.seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+  for (const auto &r : filler.getReports ())
+  {
+    ++o.reported;
+    o.closed += r.closed ? 1 : 0;
+  }
+  o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p);
+  o.input = kept->size ();
+  o.output = output.size ();
+  return o;
+}
+}  // namespace corpus

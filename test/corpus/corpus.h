@@ -118,3 +118,21 @@ holesOf (const Shape &shape, std::size_t points);
 std::vector<Shape>
 models ();
 }  // namespace corpus
+
+namespace corpus
+{
+/** \brief One case run as a user would (HoleFilling with no option), scored
+  * against the ground truth: detection (HoleBoundaryEstimation's hole loops
+  * against the cut balls) and the fill (evaluateFill, spacing = pitch). */
+struct Outcome
+{
+  DetectionScore detection;
+  pcl_holefill::shapes::FillQuality fill;
+  std::size_t input = 0, output = 0;
+  std::size_t reported = 0, closed = 0;  //!< holes in HoleFilling's reports, and of those reported closed
+  double seconds = 0.0;                  //!< HoleFilling::filter alone
+};
+
+Outcome
+runCase (const Case &c);
+}  // namespace corpus

@@ -22,9 +22,9 @@ main (int argc, char **argv)
   pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
   const std::size_t points = argc > 1 ? std::strtoul (argv[1], nullptr, 10) : 20000;
   const std::string filter = argc > 2 ? argv[2] : "";
-  std::printf ("| model | sampling | noise | normals | holes found / cut | false holes | reported closed | coverage | "
-               "max error | mean error | added outside | seconds |\n");
-  std::printf ("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  std::printf ("| model | sampling | noise | normals | holes found / cut | false holes | reported closed | closed but open | "
+               "open but covered | coverage | density | NN spacing ratio | max error | mean error | added outside | seconds |\n");
+  std::printf ("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const auto &shape : corpus::models ())
     for (const auto sampling : corpus::allSamplings ())
       for (const double noise : {0.0, 0.003})
@@ -43,10 +43,10 @@ main (int argc, char **argv)
           if (!filter.empty () && c.name.find (filter) == std::string::npos)
             continue;
           const corpus::Outcome r = corpus::runCase (c);
-          std::printf ("| %s | %s | %.1f%% | %s | %zu / %zu | %zu | %zu / %zu | %.1f%% | %.4f | %.5f | %zu | %.2f |\n",
+          std::printf ("| %s | %s | %.1f%% | %s | %zu / %zu | %zu | %zu / %zu | %zu | %zu | %.1f%% | %.2f | %.2f | %.4f | %.5f | %zu | %.2f |\n",
                        shape.name.c_str (), corpus::toString (sampling), 100 * noise,
                        estimated ? "estimated" : "exact", r.detection.found, r.detection.cut, r.detection.false_holes,
-                       r.closed, r.reported, 100 * r.fill.coverage, r.fill.max_error, r.fill.mean_error,
+                       r.closed, r.reported, r.closed_but_open, r.open_but_covered, 100 * r.fill.coverage, r.density, r.spacing_ratio, r.fill.max_error, r.fill.mean_error,
                        r.fill.outside, r.seconds);
           std::fflush (stdout);
         }

@@ -272,3 +272,68 @@ TEST (HoleFilling, TheRadiusControlsTheShapeAsInThePapersFigureOne)
   EXPECT_GE (shrinking.quality.coverage, 0.99);
   EXPECT_TRUE (shrinking.quality.kept_unchanged);
 }
+
+// The report says closed only when the patch covers the hole.
+TEST (HonestReport, AHoleStoppedEarlyIsReportedOpenWithWhatIsLeft)
+{
+  const auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}});
+  for (const int passes : {1, 200})
+  {
+    HoleFilling<pcl::PointNormal> filler;
+    filler.setInputCloud (cut.kept.makeShared ());
+    filler.setMaxPasses (passes);
+    Cloud output;
+    filler.filter (output);
+    ASSERT_EQ (filler.getReports ().size (), 1u);
+    const HoleReport &r = filler.getReports ()[0];
+    if (passes == 1)
+    {
+      // One pass moves the rim in by d_eq: the opening left is nearly the whole hole
+      // (the rim is about 0.4 across on each face).
+      EXPECT_FALSE (r.closed);
+      EXPECT_EQ (r.termination, Termination::kPassLimit);
+      EXPECT_GE (r.open_points, 10u);
+      EXPECT_GT (r.open_diameter, 0.2f);
+    }
+    else
+    {
+      EXPECT_TRUE (r.closed) << toString (r.termination);
+      EXPECT_EQ (r.open_points, 0u);
+      EXPECT_EQ (r.open_diameter, 0.f);
+    }
+    // The centre is the rim's: within the cut ball, near the corner.
+    EXPECT_LT ((r.centre - Eigen::Vector3f::Ones ()).norm (), 0.2f);
+  }
+}
+
+// The outer border of a flat patch, given as a hole, has nothing to close:
+// its front grows outwards as a flat sheet. It is stopped at the region its
+// rim can span, and the report says so.
+TEST (HonestReport, AFrontGrowingAwayIsStoppedAndReported)
+{
+  const Cloud patch = shapes::flatPatch ().sample (3000);
+  HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (patch.makeShared ());
+  std::vector<BoundaryLoop> loops;
+  estimation.compute (loops);
+  ASSERT_EQ (loops.size (), 1u);
+  ASSERT_FALSE (loops[0].is_hole);
+  HoleFilling<pcl::PointNormal> filler;
+  filler.setInputCloud (patch.makeShared ());
+  filler.setHoles (loops);
+  Cloud output;
+  filler.filter (output);
+  ASSERT_EQ (filler.getReports ().size (), 1u);
+  const HoleReport &r = filler.getReports ()[0];
+  EXPECT_FALSE (r.closed);
+  EXPECT_GT (r.outside_bound, 0u);
+  EXPECT_GT (r.open_points, 0u);
+  // Nothing farther from the rim than the rim's own diameter.
+  for (std::size_t i = patch.size (); i < output.size (); ++i)
+  {
+    float nearest = std::numeric_limits<float>::max ();
+    for (const auto j : loops[0].indices)
+      nearest = std::min (nearest, (output[i].getVector3fMap () - patch[j].getVector3fMap ()).norm ());
+    EXPECT_LE (nearest, loops[0].diameter);
+  }
+}

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace pcl_holefill
 {
@@ -32,7 +33,46 @@ turnKey (const Eigen::Vector2f &a, const Eigen::Vector2f &b)
   const float dot = a.dot (b);
   return cross >= 0.f ? 1.f - dot : 3.f + dot;
 }
+// Normals more opposed than this (cosine) belong to the other side of a thin part.
+constexpr float kOtherSideCosine = -0.3f;
+// The disc may lean this far (radians) from the gap's bisector ...
+constexpr float kDiscLeans[] = {0.f, 0.26f, -0.26f, 0.52f, -0.52f, 0.79f, -0.79f};
+// ... while staying this far (radians) inside the gap.
+constexpr float kDiscLeanMargin = 0.17f;
 }  // namespace
+
+bool
+emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
+                  const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
+                  float diameter, float test_radius)
+{
+  const float radius = 0.5f * diameter;
+  thread_local std::vector<Eigen::Vector2f> flat;
+  flat.clear ();
+  const Eigen::Vector3f e1 = gap.direction;
+  const Eigen::Vector3f e2 = unit_normal.cross (e1);
+  for (int k = 0; k < count; ++k)
+  {
+    const int j = ids[k];
+    if (unit_normals[j].dot (unit_normal) < kOtherSideCosine)
+      continue;
+    const Eigen::Vector3f u = unfoldIntoTangentPlane (positions[j] - point, unit_normal, unit_normals[j]);
+    flat.emplace_back (u.dot (e1), u.dot (e2));
+  }
+  const float max_lean = std::max (0.f, 0.5f * gap.angle - kDiscLeanMargin);
+  for (const float lean : kDiscLeans)
+  {
+    if (std::abs (lean) > max_lean)
+      continue;
+    const Eigen::Vector2f centre = radius * Eigen::Vector2f (std::cos (lean), std::sin (lean));
+    const bool empty = std::none_of (flat.begin (), flat.end (), [&] (const Eigen::Vector2f &u) {
+      return (u - centre).squaredNorm () < test_radius * test_radius;
+    });
+    if (empty)
+      return true;
+  }
+  return false;
+}
 
 AngularGap
 largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,

@@ -40,6 +40,13 @@ struct FloatOption
 std::string
 usage (const char *program)
 {
+  const auto &d = filterDefaults ();
+  // A default in the text, as the filter has it: "(1.1)".
+  auto def = [] (float value) {
+    std::ostringstream text;
+    text << '(' << value << ")\n";
+    return text.str ();
+  };
   std::ostringstream out;
   out << "Usage: " << program << " input.{pcd,ply} output.{pcd,ply} [options]\n"
       << "       " << program << " -demo DIR\n\n"
@@ -47,23 +54,24 @@ usage (const char *program)
       << "Input points are written unchanged, then the filled points, which have the field\n"
       << "'filled' = 1 (0 for input points) and the other fields of their nearest input point.\n"
       << "A cloud without normals gets them estimated (k = 16) and oriented. Lengths are in the\n"
-      << "cloud's units; 0 means derived from the point spacing h around each hole.\n\n"
+      << "cloud's units; 0 means derived from the nearest-neighbour spacing h or the sampling\n"
+      << "pitch p (sqrt(area per point)) around each hole.\n\n"
       << "Options (default):\n"
-      << "  -radius R         neighbourhood radius r of eq. (1),(7); 0 = max(4h, 2.5 d_eq)   (0)\n"
+      << "  -radius R         neighbourhood radius r of eq. (1),(7); 0 = max(4h, 2.5 d_eq)   " << def (d.getRadius ())
       << "  -sigma_n S|sup    normal dissimilarity std (no unit); small = sharp edges,\n"
-      << "                    'sup' = off, round patches                                   (0.1)\n"
+      << "                    'sup' = off, round patches                                   " << def (d.getSigmaN ())
       << "  -sigma_r S        elastic force width; spacing of new points d_eq = S^2 ln(1e4);\n"
-      << "                    0 = d_eq from -spacing                                         (0)\n"
-      << "  -spacing F        d_eq = F x h when sigma_r is 0 (0.25..10)                       (1.5)\n"
-      << "  -sigma_d S        distance weight std; 0 = r/2                                   (0)\n"
-      << "  -shrink F         r <- r/F after each pass (>= 1; the paper's 1.1)               (1)\n"
-      << "  -ratio T          stop a hole when kept control points / boundary points < T   (0.3)\n"
-      << "  -max_passes N     bound on passes per hole (1..100000)                           (200)\n"
+      << "                    0 = d_eq from -spacing                                         " << def (d.getSigmaR ())
+      << "  -spacing F        d_eq = F x p when sigma_r is 0 (0.25..10)                       " << def (d.getSpacingFactor ())
+      << "  -sigma_d S        distance weight std; 0 = r/2                                   " << def (d.getSigmaD ())
+      << "  -shrink F         r <- r/F after each pass (>= 1; the paper's 1.1)               " << def (d.getRadiusShrinkFactor ())
+      << "  -ratio T          stop a hole when kept control points / boundary points < T   " << def (d.getTerminationRatio ())
+      << "  -max_passes N     bound on passes per hole (1..100000)                           " << def (static_cast<float> (d.getMaxPasses ()))
       << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
       << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
       << "  -min_hole_size P  smallest hole, as an empty disc P sampling pitches across\n"
-      << "                    (pitch = sqrt(area per point); under 5, random gaps count) (6)\n"
-      << "  -max_hole_size D  leave holes wider than D alone; 0 = fill all                  (0)\n"
+      << "                    (pitch = sqrt(area per point); under 5, random gaps count) " << def (d.getMinHoleSize ())
+      << "  -max_hole_size D  leave holes wider than D alone; 0 = fill all                  " << def (d.getMaxHoleDiameter ())
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
       << "                    the detected holes\n"
       << "  -report FILE      per-hole report as JSON\n"

@@ -13,22 +13,30 @@
 
 namespace pcl_holefill_tool
 {
+/** \brief The filter as constructed: the one source of the command's defaults. */
+inline const pcl_holefill::HoleFilling<pcl::PointNormal> &
+filterDefaults ()
+{
+  static const pcl_holefill::HoleFilling<pcl::PointNormal> defaults;
+  return defaults;
+}
+
 /** \brief Everything the command line can say, with the library's defaults. */
 struct Options
 {
   std::string input, output;
-  float radius = 0.f;
-  float sigma_n = 0.1f;
-  float sigma_r = 0.f;
-  float sigma_d = 0.f;
-  float shrink = 1.f;
-  float ratio = 0.3f;
-  float spacing = 1.5f;
-  int max_passes = 200;
-  bool zero_order = false;
-  bool denoise = false;
-  float max_hole_size = 0.f;
-  float min_hole_size = 6.f;
+  float radius = filterDefaults ().getRadius ();
+  float sigma_n = filterDefaults ().getSigmaN ();
+  float sigma_r = filterDefaults ().getSigmaR ();
+  float sigma_d = filterDefaults ().getSigmaD ();
+  float shrink = filterDefaults ().getRadiusShrinkFactor ();
+  float ratio = filterDefaults ().getTerminationRatio ();
+  float spacing = filterDefaults ().getSpacingFactor ();
+  int max_passes = filterDefaults ().getMaxPasses ();
+  bool zero_order = !filterDefaults ().getFirstOrder ();
+  bool denoise = filterDefaults ().getDenoise ();
+  float max_hole_size = filterDefaults ().getMaxHoleDiameter ();
+  float min_hole_size = filterDefaults ().getMinHoleSize ();
   std::string holes_file, report_file, png_file, demo_dir;
   int threads = 0;
   bool quiet = false;

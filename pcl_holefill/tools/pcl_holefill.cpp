@@ -76,8 +76,13 @@ run (const Options &options)
   }
   if (!options.quiet)
     filler.setProgressCallback ([] (std::size_t hole, std::size_t holes, const pcl_holefill::HoleReport &r) {
-      std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s%s\n", hole + 1, holes,
-                    r.passes, r.points_added, pcl_holefill::toString (r.termination), r.closed ? ", closed" : "");
+      if (r.closed)
+        std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s, closed\n", hole + 1,
+                      holes, r.passes, r.points_added, pcl_holefill::toString (r.termination));
+      else
+        std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s, open (about %g across "
+                      "left)\n", hole + 1, holes, r.passes, r.points_added, pcl_holefill::toString (r.termination),
+                      r.open_diameter);
     });
   filler.setInputCloud (prepared.points);
   pcl::PointCloud<pcl::PointNormal> filtered;

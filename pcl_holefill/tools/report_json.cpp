@@ -43,6 +43,9 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"first_output_index\": " << r.first_output_index << ", \"termination\": \""
         << pcl_holefill::toString (r.termination) << "\", \"closed\": " << (r.closed ? "true" : "false")
         << ", \"spacing\": " << r.spacing << ", \"equilibrium_distance\": " << r.equilibrium_distance
+        << ", \"open_points\": " << r.open_points << ", \"open_diameter\": " << r.open_diameter
+        << ", \"outside_bound\": " << r.outside_bound << ", \"centre\": [" << r.centre.x () << ", "
+        << r.centre.y () << ", " << r.centre.z () << "], \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
         << ", \"first_order\": " << (r.first_order ? "true" : "false") << "}";
   }

@@ -515,6 +515,75 @@ models ()
 
 namespace corpus
 {
+namespace
+{
+/** A grid over the points of \a cloud, whose positions go to \a positions. */
+pcl_holefill::PointGrid
+gridOf (const Cloud &cloud, std::vector<Eigen::Vector3f> &positions)
+{
+  positions.clear ();
+  for (const auto &q : cloud)
+    positions.push_back (q.getVector3fMap ());
+  pcl_holefill::PointGrid grid (pcl_holefill::PointGrid::suggestCellSize (positions, 8));
+  grid.build (positions);
+  return grid;
+}
+
+/** Per cut ball: is it covered (>= 99 % of its removed samples within 1.5
+  * pitches of an output point)? */
+std::vector<bool>
+coveredBalls (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
+{
+  std::vector<Eigen::Vector3f> positions;
+  const pcl_holefill::PointGrid grid = gridOf (output, positions);
+  std::vector<std::size_t> total (balls.size (), 0), covered (balls.size (), 0);
+  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  for (const auto &q : cut.removed)
+  {
+    const Eigen::Vector3d x = q.getVector3fMap ().cast<double> ();
+    std::size_t b = 0;
+    for (std::size_t i = 1; i < balls.size (); ++i)
+      if ((x - balls[i].centre).norm () - balls[i].radius < (x - balls[b].centre).norm () - balls[b].radius)
+        b = i;
+    ++total[b];
+    grid.nearestK (q.getVector3fMap (), 1, nearest);
+    covered[b] += !nearest.empty () && nearest[0].sqr_distance <= 2.25 * p * p ? 1 : 0;
+  }
+  std::vector<bool> result (balls.size ());
+  for (std::size_t b = 0; b < balls.size (); ++b)
+    result[b] = covered[b] >= 0.99 * total[b];
+  return result;
+}
+
+/** Mean nearest-neighbour distance of the filled points over that of the
+  * kept points around the cut balls (within 3 pitches of a ball). */
+double
+fillSpacingRatio (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
+{
+  std::vector<Eigen::Vector3f> positions;
+  const pcl_holefill::PointGrid grid = gridOf (output, positions);
+  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  double rim_sum = 0.0, fill_sum = 0.0;
+  std::size_t rim_count = 0, fill_count = 0;
+  for (std::size_t i = 0; i < positions.size (); ++i)
+  {
+    const bool filled = i >= cut.kept.size ();
+    const Eigen::Vector3d x = positions[i].cast<double> ();
+    const bool near_rim = std::any_of (balls.begin (), balls.end (), [&] (const Ball &b) {
+      return (x - b.centre).norm () <= b.radius + 3.0 * p;
+    });
+    if (!filled && !near_rim)
+      continue;
+    grid.nearestK (positions[i], 2, nearest);
+    if (nearest.size () < 2)
+      continue;
+    (filled ? fill_sum : rim_sum) += std::sqrt (nearest[1].sqr_distance);
+    ++(filled ? fill_count : rim_count);
+  }
+  return fill_count && rim_count ? (fill_sum / fill_count) / (rim_sum / rim_count) : 0.0;
+}
+}  // namespace
+
 Outcome
 runCase (const Case &c)
 {
@@ -542,12 +611,24 @@ runCase (const Case &c)
   const auto start = std::chrono::steady_clock::now ();
   filler.filter (output);
   o.seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+  o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p);
+  const auto covered = coveredBalls (cut, c.holes, output, p);
+  o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
   for (const auto &r : filler.getReports ())
   {
     ++o.reported;
     o.closed += r.closed ? 1 : 0;
+    std::size_t b = 0;  // the cut ball the report is about: the nearest to its rim's centre
+    for (std::size_t i = 1; i < c.holes.size (); ++i)
+      if ((r.centre.cast<double> () - c.holes[i].centre).norm () < (r.centre.cast<double> () - c.holes[b].centre).norm ())
+        b = i;
+    if (c.holes.empty ())
+      continue;
+    o.closed_but_open += r.closed && !covered[b] ? 1 : 0;
+    o.open_but_covered += !r.closed && covered[b] ? 1 : 0;
   }
-  o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p);
+  o.spacing_ratio = fillSpacingRatio (cut, c.holes, output, p);
+  o.density = cut.removed.empty () ? 0.0 : static_cast<double> (o.fill.filled) / cut.removed.size ();
   o.input = kept->size ();
   o.output = output.size ();
   return o;

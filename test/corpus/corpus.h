@@ -130,6 +130,14 @@ struct Outcome
   pcl_holefill::shapes::FillQuality fill;
   std::size_t input = 0, output = 0;
   std::size_t reported = 0, closed = 0;  //!< holes in HoleFilling's reports, and of those reported closed
+  /** Cut balls whose removed samples are covered (>= 99 % within 1.5 pitches of an output point). */
+  std::size_t covered_balls = 0;
+  /** Reports claiming closed whose nearest cut ball is not covered, and the reverse. */
+  std::size_t closed_but_open = 0, open_but_covered = 0;
+  /** Filled points per removed sample: 1 = the input's density (valid when covered). */
+  double density = 0.0;
+  /** Mean nearest-neighbour distance of the filled points over the kept points' near the holes. */
+  double spacing_ratio = 0.0;
   double seconds = 0.0;                  //!< HoleFilling::filter alone
 };
 

@@ -86,4 +86,20 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
                    const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids,
                    int count);
 
+/** \brief The empty-disc test: whether a disc of \a diameter, lying in the
+  * tangent plane of \a point and touching it from the side of its widest
+  * angular \a gap, holds none of the \a count neighbours given as \a ids
+  * into \a positions and \a unit_normals.
+  *
+  * The neighbours are unfolded into the tangent plane as the angular-gap test
+  * sees them; those whose normal faces away (the other side of a thin part)
+  * are not surface next to the point and are ignored. The disc is tried along
+  * the gap's bisector and leaning within the gap by up to 45 degrees; a
+  * neighbour closer than \a test_radius (at most diameter / 2: the margin a
+  * ragged rim needs) to its centre fills it. */
+bool
+emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
+                  const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
+                  float diameter, float test_radius);
+
 }  // namespace pcl_holefill

@@ -137,7 +137,8 @@ private:
     kRepelled,
     kTooClose,
     kOvershoot,
-    kUnsupported
+    kUnsupported,
+    kOutsideBound
   };
 
   /** Optimises a candidate and runs every check but the repulsion. */

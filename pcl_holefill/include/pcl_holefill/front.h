@@ -37,7 +37,8 @@ struct ContractionStats
   std::size_t repelled = 0;                //!< candidates discarded by the elastic force (fronts met)
   std::size_t too_close = 0;               //!< candidates on top of existing surface (hole closed there)
   std::size_t rejected_by_constraint = 0;  //!< overshooting candidates (section 4.4)
-  std::size_t unsupported = 0;             //!< no weighted neighbour, or outside the hole's bound
+  std::size_t unsupported = 0;             //!< no weighted neighbour
+  std::size_t outside_bound = 0;           //!< outside the hole's bounding ball
   std::size_t samples = 0;                 //!< points of the new boundary B
 };
 

@@ -5,8 +5,10 @@
 #pragma once
 
 #include <pcl_holefill/boundary_loop.h>
+#include <pcl_holefill/elastic_sampler.h>
 #include <pcl_holefill/hole_report.h>
 #include <pcl_holefill/local_surface.h>
+#include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/filters/filter.h>
 #include <pcl/search/search.h>
@@ -30,7 +32,8 @@ namespace pcl_holefill
   * deterministic order. getReports() tells what happened to each.
   *
   * Parameters, with the paper's names. Lengths are in cloud units and, left
-  * at 0, derived from the mean point spacing h around each hole, so the
+  * at 0, derived from the mean nearest-neighbour distance h and the sampling
+  * pitch p around each hole, so the
   * defaults work on any cloud without tuning:
   *  - r (setRadius): neighbourhood of eq. (1) and (7); 0 = max(4h, 2.5 d_eq).
   *  - shrink (setRadiusShrinkFactor): r <- r / shrink each pass (the paper's
@@ -46,9 +49,10 @@ namespace pcl_holefill
   *    in sqrt(cloud units)). The paper's Table 1 values (0.12-0.25 "BBL")
   *    would give d_eq of 13-58 % of the model's size under any reading, so
   *    they cannot be reused. 0 (default) = d_eq from the input density:
-  *    d_eq = spacing factor x h (setSpacingFactor, default 1.5: a grid of
-  *    pitch 1.5 h is about as dense as a jittered sampling whose nearest
-  *    neighbours are h apart, and still leaves no gap wider than ~1 h).
+  *    d_eq = spacing factor x p (setSpacingFactor, default 1.1), p the sampling
+  *    pitch around the rim, sqrt(surface area per point): the fill is then
+  *    as dense as the input, whatever its sampling (on uniformly random
+  *    samples h is about p/2, on Poisson-disk samples 0.9 p).
   *  - termination ratio (setTerminationRatio): stop a hole when kept control
   *    points / boundary points < ratio (paper: 30 %).
   *  - max passes (setMaxPasses): hard bound per hole (default 200).
@@ -158,10 +162,69 @@ protected:
   applyFilter (PointCloud &output) override;
 
 private:
-  /** Fills one hole of \a working; the new points go to \a filled. */
+  using pcl::Filter<PointT>::getClassName;
+
+  /** The scale of one hole, measured on its rim. */
+  struct HoleScale
+  {
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
+    float rim_radius = 0.f;  //!< largest distance of a rim point from the centre
+    float spacing = 0.f;     //!< h: mean nearest-neighbour distance of the rim points
+    float pitch = 0.f;       //!< sqrt(surface area per point) around the rim (median)
+    float d_eq = 0.f;        //!< equilibrium distance: the spacing of the filled points
+    float radius = 0.f;      //!< r of the first pass
+    float min_radius = 0.f;  //!< r never shrinks below this
+    float bound = 0.f;       //!< the fill stays this close to the centre
+  };
+
+  /** A hole's surroundings, copied: the fill grows this cloud, never the input. */
+  struct Surroundings
+  {
+    PointCloudPtr cloud;                           //!< input points near the hole, then the fill
+    typename VoxelHashSearch<PointT>::Ptr search;  //!< over cloud, extended pass by pass
+    std::size_t input_points = 0;                  //!< how many of cloud are input points
+    pcl::Indices rim;                              //!< the rim, as indices into cloud
+  };
+
+  /** Fills one hole of \a working (Algorithm 1 for one loop); the new points go to \a filled. */
   void
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report) const;
+
+  /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
+  bool
+  measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+              HoleScale &scale) const;
+
+  /** Copies the input points that the fill of this hole can reach. */
+  void
+  gatherSurroundings (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+                      const HoleScale &scale, Surroundings &surroundings) const;
+
+  /** The sampler's parameters for this hole, from the scale and the rim's noise. */
+  void
+  setUpSampler (ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,
+                HoleReport &report) const;
+
+  /** The Do ... Until loop of Algorithm 1: contraction passes from \a front
+    * until the termination rule; returns the boundary where the fill stopped. */
+  Front
+  contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings, Front front,
+                            const HoleScale &scale, HoleReport &report) const;
+
+  /** The termination rule after pass \a pass of this run, \a passes_done in all (kNotStarted: go on). */
+  Termination
+  terminationOf (const ContractionStats &stats, const Front &next, int pass, float first_length,
+                 unsigned passes_done) const;
+
+  /** closed, open_points and open_diameter of \a report: where an empty disc still touches \a last. */
+  void
+  checkClosure (const Surroundings &surroundings, const Front &last, const HoleScale &scale,
+                HoleReport &report) const;
+
+  /** The warnings a user should see about one hole. */
+  void
+  warnAbout (const BoundaryLoop &loop, const HoleScale &scale, std::size_t added, const HoleReport &report) const;
 
   /** \a output = \a points then every fill, allocated once. */
   void
@@ -176,7 +239,7 @@ private:
   float sigma_d_ = 0.f;
   float sigma_n_ = 0.1f;
   float sigma_r_ = 0.f;
-  float spacing_factor_ = 1.5f;
+  float spacing_factor_ = 1.1f;
   float termination_ratio_ = 0.3f;
   int max_passes_ = 200;
   float max_growth_ = 1.5f;

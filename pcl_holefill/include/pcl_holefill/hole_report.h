@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstddef>
 
 namespace pcl_holefill
@@ -30,13 +32,18 @@ struct HoleReport
   std::size_t points_added = 0;        //!< filled points in the output
   std::size_t first_output_index = 0;  //!< where they start in the output cloud
   Termination termination = Termination::kNotStarted;
-  bool closed = false;                 //!< stopped by the paper's rule with the fronts met
+  bool closed = false;                 //!< no empty disc of 2 d_eq touches the boundary where the fill stopped
+  std::size_t open_points = 0;         //!< boundary points where the fill stopped that an empty disc touches
+  float open_diameter = 0.f;           //!< largest distance between two of them: the size of what is left
+  std::size_t outside_bound = 0;       //!< samples stopped at the region the rim can span (a runaway front)
   float diameter = 0.f;                //!< of the boundary loop
-  float spacing = 0.f;                 //!< mean input spacing around the rim
+  float spacing = 0.f;                 //!< h: mean nearest-neighbour distance of the rim points
+  float pitch = 0.f;                   //!< sampling pitch around the rim, sqrt(area per point)
   float equilibrium_distance = 0.f;    //!< d_eq used
   float radius = 0.f;                  //!< r of the first pass
   float noise = 0.f;                   //!< RMS distance of the rim's neighbours to their fitted plane
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
 };
 
 }  // namespace pcl_holefill

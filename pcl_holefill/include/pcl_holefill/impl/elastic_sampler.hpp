@@ -136,7 +136,7 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
   if (!optimisePosition (position, reference_normal, normal))
     return Verdict::kUnsupported;
   if (bound_radius_ > 0.f && (position - bound_centre_).norm () > bound_radius_)
-    return Verdict::kUnsupported;
+    return Verdict::kOutsideBound;
   PointT query;
   query.getVector3fMap () = position;
   pcl::Indices found;
@@ -188,6 +188,7 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
     case Verdict::kTooClose: ++stats.too_close; break;
     case Verdict::kOvershoot: ++stats.rejected_by_constraint; break;
     case Verdict::kUnsupported: ++stats.unsupported; break;
+    case Verdict::kOutsideBound: ++stats.outside_bound; break;
     case Verdict::kKept: break;
     }
   };

@@ -21,16 +21,9 @@ namespace pcl_holefill
 {
 namespace detail
 {
-// Neighbours whose normal is more than ~107 degrees from a point's lie on the
-// other side of a thin part: they do not fill a gap on this side.
-constexpr float kOtherSideCosine = -0.3f;
 // How much smaller than the hole (in pitches of radius) the disc tested at a
 // rim point is: a sampled rim is ragged by about a pitch.
 constexpr float kRimRaggedness = 0.5f;
-// Angles (radians) from the empty sector's bisector at which the disc is
-// tried, and how far from the sector's sides it must stay.
-constexpr float kDiscLeans[] = {0.f, 0.26f, -0.26f, 0.52f, -0.52f, 0.79f, -0.79f};
-constexpr float kDiscLeanMargin = 0.17f;
 }  // namespace detail
 
 template <typename PointT> bool
@@ -204,41 +197,14 @@ template <typename PointT> bool
 HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const AngularGap &gap, float diameter,
                                                   float pitch) const
 {
-  const Eigen::Vector3f &p = positions_[local];
-  const Eigen::Vector3f &n = normals_[local];
-  const float radius = 0.5f * diameter;
   thread_local std::vector<int> ids;
   usableWithin (local, diameter, ids);
-  // The neighbours laid out in the tangent plane (unfolded across sharp
-  // edges, as the angular-gap test sees them). Points whose normal faces
-  // away are the other side of a thin part, not surface next to this one.
-  thread_local std::vector<Eigen::Vector2f> flat;
-  flat.clear ();
-  const Eigen::Vector3f e1 = gap.direction;
-  const Eigen::Vector3f e2 = n.cross (e1);
-  for (const int j : ids)
-  {
-    if (normals_[j].dot (n) < detail::kOtherSideCosine)
-      continue;
-    const Eigen::Vector3f u = unfoldIntoTangentPlane (positions_[j] - p, n, normals_[j]);
-    flat.emplace_back (u.dot (e1), u.dot (e2));
-  }
   // A rim is ragged by about a pitch: the disc tested is that much smaller
-  // than the hole it stands for, and may lean within the empty sector.
-  const float test_radius = radius - detail::kRimRaggedness * pitch;
-  const float max_lean = std::max (0.f, 0.5f * gap.angle - detail::kDiscLeanMargin);
-  for (const float lean : detail::kDiscLeans)
-  {
-    if (std::abs (lean) > max_lean)
-      continue;
-    const Eigen::Vector2f centre = radius * Eigen::Vector2f (std::cos (lean), std::sin (lean));
-    const bool empty = std::none_of (flat.begin (), flat.end (), [&] (const Eigen::Vector2f &u) {
-      return (u - centre).squaredNorm () < test_radius * test_radius;
-    });
-    if (empty)
-      return true;
-  }
-  return false;
+  // than the hole it stands for.
+  const float test_radius = 0.5f * diameter - detail::kRimRaggedness * pitch;
+  return pcl_holefill::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (),
+                                         normals_.data (), ids.data (), static_cast<int> (ids.size ()), diameter,
+                                         test_radius);
 }
 
 template <typename PointT> float

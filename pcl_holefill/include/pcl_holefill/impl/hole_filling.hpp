@@ -26,6 +26,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <unordered_map>
 
 namespace pcl_holefill
@@ -38,8 +40,18 @@ constexpr float kMaxAreaOverRimDisc = 2.5f;
 // The fill of a hole stays inside the ball around its rim's centroid of
 // radius kBoundScale x (rim radius) + 2 d_eq: a runaway front is cut there.
 constexpr float kBoundScale = 1.5f;
-// A last boundary narrower than this (in d_eq) has closed onto a point.
-constexpr float kClosedFrontDiameter = 4.f;
+// A hole is open where an empty disc this wide (in d_eq) touches the
+// boundary on which its fill stopped: twice the spacing of the fill.
+constexpr float kOpenDiscInSpacings = 3.f;
+// ... a disc counts as empty when no point lies within this share of its radius.
+constexpr float kOpenDiscFill = 0.9f;
+// An opening shows on at least this many points. Fewer, close together, are
+// the apex of a corner: the faces around a convex corner, unfolded into one
+// plane, leave an empty wedge (90 degrees at a cube's corner) even when the
+// surface is complete.
+constexpr std::size_t kMinOpenPoints = 3;
+// Neighbours from which the sampling pitch around a rim point is measured.
+constexpr int kPitchNeighbours = 16;
 // More neighbouring normals than this pointing opposite ways: not oriented.
 constexpr float kMaxFlippedShare = 0.02f;
 // Tolerance of the combination constraint, in mean spacings, on clean data...
@@ -282,81 +294,105 @@ HoleFilling<PointT>::writeOutput (const PointCloud &points, const std::vector<Po
   output.sensor_orientation_ = points.sensor_orientation_;
 }
 
-template <typename PointT> void
-HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<PointT> &search,
-                               const BoundaryLoop &loop, PointCloud &filled, HoleReport &report) const
+template <typename PointT> bool
+HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<PointT> &search,
+                                 const pcl::Indices &rim, HoleScale &scale) const
 {
-  report.boundary_points = loop.indices.size ();
-  report.diameter = loop.diameter;
-  // The rim: usable points only.
-  pcl::Indices rim;
-  for (const auto i : loop.indices)
-    if (i >= 0 && static_cast<std::size_t> (i) < working.size () && isOrientedPoint (working[i]))
-      rim.push_back (i);
-  if (rim.size () < 3)
-  {
-    PCL_WARN ("[pcl_holefill::HoleFilling] A hole has fewer than 3 usable boundary points: skipped.\n");
-    return;
-  }
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  scale.centre.setZero ();
   for (const auto i : rim)
-    centroid += working[i].getVector3fMap ();
-  centroid /= static_cast<float> (rim.size ());
-  float rim_radius = 0.f;
+    scale.centre += working[i].getVector3fMap ();
+  scale.centre /= static_cast<float> (rim.size ());
+  // h, the mean nearest-neighbour distance, sets the reach of the local
+  // fits; the pitch, sqrt(area per point), sets the spacing of the fill so
+  // that it is as dense as the input (the two differ by 2x on random samples).
   double spacing_sum = 0.0;
+  std::vector<float> pitches;
   pcl::Indices found;
   std::vector<float> sqr_distances;
+  std::vector<Eigen::Vector3f> positions, normals;
+  std::vector<int> ids;
   for (const auto i : rim)
   {
-    rim_radius = std::max (rim_radius, (working[i].getVector3fMap () - centroid).norm ());
-    // The nearest distinct neighbour (duplicates say nothing about spacing).
-    search.nearestKSearch (working[i], 8, found, sqr_distances);
-    const auto distinct = std::find_if (sqr_distances.begin (), sqr_distances.end (), [] (float d) { return d > 0.f; });
-    if (distinct != sqr_distances.end ())
-      spacing_sum += std::sqrt (*std::min_element (distinct, sqr_distances.end ()));
+    scale.rim_radius = std::max (scale.rim_radius, (working[i].getVector3fMap () - scale.centre).norm ());
+    search.nearestKSearch (working[i], detail::kPitchNeighbours + 1, found, sqr_distances);
+    positions.clear ();
+    normals.clear ();
+    float nearest = 0.f, farthest = 0.f;
+    for (std::size_t k = 0; k < found.size (); ++k)
+    {
+      if (!(sqr_distances[k] > 0.f) || !isOrientedPoint (working[found[k]]))
+        continue;  // the point itself, duplicates and unusable points say nothing about spacing
+      nearest = positions.empty () ? sqr_distances[k] : std::min (nearest, sqr_distances[k]);
+      farthest = std::max (farthest, sqr_distances[k]);
+      positions.push_back (working[found[k]].getVector3fMap ());
+      normals.push_back (working[found[k]].getNormalVector3fMap ().normalized ());
+    }
+    if (positions.empty ())
+      continue;
+    spacing_sum += std::sqrt (nearest);
+    ids.resize (positions.size ());
+    std::iota (ids.begin (), ids.end (), 0);
+    const AngularGap gap = largestAngularGap (working[i].getVector3fMap (),
+                                              working[i].getNormalVector3fMap ().normalized (), positions.data (),
+                                              normals.data (), ids.data (), static_cast<int> (ids.size ()));
+    pitches.push_back (samplingPitch (farthest, static_cast<int> (positions.size ()), gap.angle));
   }
-  const float h = static_cast<float> (spacing_sum / rim.size ());
-  if (!(h > 0.f))
-  {
-    PCL_WARN ("[pcl_holefill::HoleFilling] A hole's rim has no spacing (duplicate points?): skipped.\n");
-    return;
-  }
-  const float d_eq = sigma_r_ > 0.f ? ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
-                                    : spacing_factor_ * h;
-  const float radius = radius_ > 0.f ? radius_ : std::max (4.f * h, 2.5f * d_eq);
-  const float min_radius = std::max (2.f * h, 1.5f * d_eq);
-  const float bound = detail::kBoundScale * rim_radius + 2.f * d_eq;
-  report.spacing = h;
-  report.equilibrium_distance = d_eq;
-  report.radius = radius;
+  if (pitches.empty () || !(spacing_sum > 0.0))
+    return false;
+  scale.spacing = static_cast<float> (spacing_sum / pitches.size ());
+  std::nth_element (pitches.begin (), pitches.begin () + pitches.size () / 2, pitches.end ());
+  scale.pitch = pitches[pitches.size () / 2];
+  const float h = scale.spacing;
+  scale.d_eq = sigma_r_ > 0.f ? ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
+                              : spacing_factor_ * scale.pitch;
+  scale.radius = radius_ > 0.f ? radius_ : std::max (4.f * h, 2.5f * scale.d_eq);
+  scale.min_radius = std::max (2.f * h, 1.5f * scale.d_eq);
+  scale.bound = detail::kBoundScale * scale.rim_radius + 2.f * scale.d_eq;
+  return scale.d_eq > 0.f && std::isfinite (scale.d_eq);
+}
 
-  // The hole's surroundings, copied: the fill grows this cloud, never the input.
-  typename PointCloud::Ptr local (new PointCloud);
+template <typename PointT> void
+HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search::Search<PointT> &search,
+                                         const pcl::Indices &rim, const HoleScale &scale,
+                                         Surroundings &surroundings) const
+{
+  surroundings.cloud.reset (new PointCloud);
   PointT centre;
-  centre.getVector3fMap () = centroid;
-  search.radiusSearch (centre, bound + radius, found, sqr_distances);
+  centre.getVector3fMap () = scale.centre;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  search.radiusSearch (centre, scale.bound + scale.radius, found, sqr_distances);
   std::sort (found.begin (), found.end ());  // a deterministic order, whatever the search
   std::unordered_map<int, int> local_index;
   for (const auto i : found)
   {
-    local_index[i] = static_cast<int> (local->size ());
-    local->push_back (working[i]);
+    local_index[i] = static_cast<int> (surroundings.cloud->size ());
+    surroundings.cloud->push_back (working[i]);
   }
-  const std::size_t input_points = local->size ();
-  typename VoxelHashSearch<PointT>::Ptr local_search (new VoxelHashSearch<PointT>);
-  local_search->setCellSize (radius);  // a radius-r query then reads a 3x3x3 block
-  local_search->setInputCloud (local);
-
-  ElasticSampler<PointT> sampler;
-  sampler.setInputCloud (local);
-  sampler.setSearchMethod (local_search);
-  sampler.setSigmaN (sigma_n_);
-  sampler.setEquilibriumDistance (d_eq);
-  pcl::Indices local_rim;
+  surroundings.input_points = surroundings.cloud->size ();
+  surroundings.rim.clear ();
   for (const auto i : rim)
-    if (local_index.count (i))
-      local_rim.push_back (local_index[i]);
-  report.noise = detail::rimNoise (*local, *local_search, local_rim, detail::kNoiseReachInSpacings * h);
+  {
+    const auto it = local_index.find (i);
+    if (it != local_index.end ())
+      surroundings.rim.push_back (it->second);
+  }
+  surroundings.search.reset (new VoxelHashSearch<PointT>);
+  surroundings.search->setCellSize (scale.radius);  // a radius-r query then reads a 3x3x3 block
+  surroundings.search->setInputCloud (surroundings.cloud);
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+                                   const HoleScale &scale, HoleReport &report) const
+{
+  const float h = scale.spacing;
+  sampler.setInputCloud (surroundings.cloud);
+  sampler.setSearchMethod (surroundings.search);
+  sampler.setSigmaN (sigma_n_);
+  sampler.setEquilibriumDistance (scale.d_eq);
+  report.noise = detail::rimNoise (*surroundings.cloud, *surroundings.search, surroundings.rim,
+                                   detail::kNoiseReachInSpacings * h);
   // The first-order extension extrapolates the rim's curvature from its
   // normals: on a noisy rim (whose normals, estimated from the noisy points,
   // are noisy too) it extrapolates the noise, and the patch runs away.
@@ -365,99 +401,230 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   sampler.setConstraintTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));
   sampler.setCombinationConstraint (combination_constraint_);
-  sampler.setBoundingBall (centroid, bound);
+  sampler.setBoundingBall (scale.centre, scale.bound);
+}
 
-  Front front (1);
-  front[0].closed = loop.closed;
-  for (const auto i : rim)
-  {
-    const auto it = local_index.find (i);
-    if (it == local_index.end ())
-      continue;
-    const PointT &p = (*local)[it->second];
-    front[0].vertices.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
-  }
+template <typename PointT> Termination
+HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &next, int pass,
+                                    float first_length, unsigned passes_done) const
+{
+  if (frontSize (next) < 3)
+    return Termination::kNoNewBoundary;
+  const float ratio = stats.former_boundary_points > 0
+                          ? static_cast<float> (stats.kept_control_points) / stats.former_boundary_points
+                          : 0.f;
+  if (ratio < termination_ratio_)
+    return Termination::kControlRatio;
+  if (pass > 0 && frontLength (next) > max_growth_ * first_length)
+    return Termination::kDiverging;
+  if (passes_done >= static_cast<unsigned> (max_passes_))
+    return Termination::kPassLimit;
+  return Termination::kNotStarted;  // not yet: go on
+}
+
+template <typename PointT> Front
+HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
+                                               Front front, const HoleScale &scale, HoleReport &report) const
+{
   // Growth is measured against the first contracted boundary, which is
   // sampled like every later one (the input rim is jagged, hence longer).
   float first_length = 0.f;
-
-  ContractionStats stats;
-  float pass_radius = radius;
+  float pass_radius = scale.radius;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  Front next;
   report.termination = Termination::kPassLimit;
-  for (int pass = 0; pass < max_passes_; ++pass)
+  for (int pass = 0; report.passes < static_cast<unsigned> (max_passes_); ++pass)
   {
     sampler.setRadius (pass_radius);
     sampler.setSigmaD (sigma_d_ > 0.f ? sigma_d_ : 0.5f * pass_radius);
-    Front next;
+    ContractionStats stats;
     if (!sampler.contract (front, next, stats))
     {
       report.termination = Termination::kNotStarted;
+      next.clear ();
       break;
     }
     ++report.passes;
+    report.outside_bound += stats.outside_bound;
+    PCL_DEBUG ("[pcl_holefill::%s::contractUntilTermination] pass %d: |B'| %zu, kept %zu, repelled %zu, on "
+               "surface %zu, overshoot %zu, unsupported %zu, outside %zu, |B| %zu\n",
+               getClassName ().c_str (), pass, stats.former_boundary_points, stats.kept_control_points,
+               stats.repelled, stats.too_close, stats.rejected_by_constraint, stats.unsupported,
+               stats.outside_bound, stats.samples);
     // B joins the surface: other fields from the nearest known point.
     for (const auto &chain : next)
       for (const auto &v : chain.vertices)
       {
         PointT query;
         query.getVector3fMap () = v.position;
-        local_search->nearestKSearch (query, 1, found, sqr_distances);
-        PointT p = found.empty () ? query : (*local)[found[0]];
+        surroundings.search->nearestKSearch (query, 1, found, sqr_distances);
+        PointT p = found.empty () ? query : (*surroundings.cloud)[found[0]];
         p.getVector3fMap () = v.position;
         p.getNormalVector3fMap () = v.normal;
-        local->push_back (p);
+        surroundings.cloud->push_back (p);
       }
-    local_search->indexNewPoints ();
-
-    const float ratio = stats.former_boundary_points > 0
-                            ? static_cast<float> (stats.kept_control_points) / stats.former_boundary_points
-                            : 0.f;
-    if (frontSize (next) < 3)
-    {
-      report.termination = Termination::kNoNewBoundary;
-      break;
-    }
-    if (ratio < termination_ratio_)
-    {
-      report.termination = Termination::kControlRatio;
-      break;
-    }
+    surroundings.search->indexNewPoints ();
     if (pass == 0)
       first_length = frontLength (next);
-    else if (frontLength (next) > max_growth_ * first_length)
+    const Termination end = terminationOf (stats, next, pass, first_length, report.passes);
+    if (end != Termination::kNotStarted)
     {
-      report.termination = Termination::kDiverging;
+      report.termination = end;
       break;
     }
     front.swap (next);
-    pass_radius = std::max (min_radius, pass_radius / shrink_);
+    next.clear ();
+    pass_radius = std::max (scale.min_radius, pass_radius / shrink_);
   }
-  // Closed: stopped by the paper's rule, and either the last boundary had
-  // shrunk to a few samples (an apex, a corner) or most of its candidates
-  // were discarded because fronts met (the elastic force, or surface already there).
-  const std::size_t discarded = stats.former_boundary_points - stats.kept_control_points;
-  std::vector<Eigen::Vector3f> last_boundary;
-  for (const auto &chain : front)
-    for (const auto &v : chain.vertices)
-      last_boundary.push_back (v.position);
-  const bool natural_end = report.termination == Termination::kControlRatio ||
-                           report.termination == Termination::kNoNewBoundary;
-  report.closed = natural_end && (2 * (stats.repelled + stats.too_close) >= discarded ||
-                                  loopDiameter (last_boundary) <= detail::kClosedFrontDiameter * d_eq);
+  // Where the fill stopped: the last boundary and what grew from it.
+  front.insert (front.end (), next.begin (), next.end ());
+  return front;
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front &last_front,
+                                   const HoleScale &scale, HoleReport &report) const
+{
+  // The boundary where the fill stopped, and every filled point: a gap left
+  // early (between the rim and the first pass, or where a front was cut)
+  // lies next to filled points too.
+  std::vector<FrontVertex> last;
+  for (const auto &chain : last_front)
+    last.insert (last.end (), chain.vertices.begin (), chain.vertices.end ());
+  for (std::size_t i = surroundings.input_points; i < surroundings.cloud->size (); ++i)
+  {
+    const PointT &p = (*surroundings.cloud)[i];
+    last.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ()});
+  }
+  // A hole is closed when no empty disc wider than kOpenDiscInSpacings d_eq
+  // touches the boundary where the fill stopped: the fronts met everywhere.
+  const float diameter = detail::kOpenDiscInSpacings * scale.d_eq;
+  const PointCloud &cloud = *surroundings.cloud;
+  std::vector<Eigen::Vector3f> positions, normals;
+  std::vector<int> ids;
+  std::vector<Eigen::Vector3f> open;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto &v : last)
+  {
+    PointT query;
+    query.getVector3fMap () = v.position;
+    surroundings.search->radiusSearch (query, diameter, found, sqr_distances);
+    positions.clear ();
+    normals.clear ();
+    for (std::size_t k = 0; k < found.size (); ++k)
+      if (sqr_distances[k] > 0.f)
+      {
+        positions.push_back (cloud[found[k]].getVector3fMap ());
+        normals.push_back (cloud[found[k]].getNormalVector3fMap ().normalized ());
+      }
+    ids.resize (positions.size ());
+    std::iota (ids.begin (), ids.end (), 0);
+    const int count = static_cast<int> (ids.size ());
+    const AngularGap gap =
+        largestAngularGap (v.position, v.normal, positions.data (), normals.data (), ids.data (), count);
+    if (gap.angle > static_cast<float> (M_PI / 2.0) &&
+        emptyDiscTouches (v.position, v.normal, gap, positions.data (), normals.data (), ids.data (), count,
+                          diameter, detail::kOpenDiscFill * 0.5f * diameter))
+      open.push_back (v.position);
+  }
+  // The open points, grouped into openings (linked within a disc's width).
+  // An opening shows on several points spread over more than the disc's
+  // radius; a tight group of a few is the apex of a convex corner, whose
+  // faces, unfolded into one plane, always leave an empty wedge.
+  std::vector<int> group (open.size ());
+  std::iota (group.begin (), group.end (), 0);
+  std::function<int (int)> root = [&] (int i) { return group[i] == i ? i : group[i] = root (group[i]); };
+  for (std::size_t i = 0; i < open.size (); ++i)
+    for (std::size_t j = i + 1; j < open.size (); ++j)
+      if ((open[i] - open[j]).norm () <= diameter)
+        group[root (static_cast<int> (i))] = root (static_cast<int> (j));
+  std::unordered_map<int, std::vector<Eigen::Vector3f>> openings;
+  for (std::size_t i = 0; i < open.size (); ++i)
+    openings[root (static_cast<int> (i))].push_back (open[i]);
+  report.open_points = 0;
+  report.open_diameter = 0.f;
+  for (const auto &opening : openings)
+  {
+    const float spread = loopDiameter (opening.second);
+    if (opening.second.size () < detail::kMinOpenPoints || spread < 0.5f * diameter)
+      continue;
+    report.open_points += opening.second.size ();
+    report.open_diameter = std::max (report.open_diameter, spread);
+  }
+  report.closed = report.open_points == 0 && report.termination != Termination::kNotStarted;
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale, std::size_t added,
+                                const HoleReport &report) const
+{
   // Each filled point stands for about d_eq^2 of surface.
-  const float patch_area = static_cast<float> (local->size () - input_points) * d_eq * d_eq;
+  const float patch_area = static_cast<float> (added) * scale.d_eq * scale.d_eq;
   const float rim_disc = static_cast<float> (M_PI) * 0.25f * loop.diameter * loop.diameter;
   if (report.closed && rim_disc > 0.f && patch_area > detail::kMaxAreaOverRimDisc * rim_disc)
-    PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g needed a patch %.1f times the disc on its rim: "
+    PCL_WARN ("[pcl_holefill::%s::fillHole] A hole of diameter %g needed a patch %.1f times the disc on its rim: "
               "more than half of the shape may be missing there, and the patch is a guess.\n",
-              loop.diameter, patch_area / rim_disc);
-  if (report.termination == Termination::kDiverging || report.termination == Termination::kPassLimit)
-    PCL_WARN ("[pcl_holefill::HoleFilling] A hole of diameter %g stopped after %u passes (%s): it is not closed. "
-              "More than half of the shape may be missing there.\n",
-              loop.diameter, report.passes, toString (report.termination));
+              getClassName ().c_str (), loop.diameter, patch_area / rim_disc);
+  if (report.outside_bound > 0)
+    PCL_WARN ("[pcl_holefill::%s::fillHole] The fill of a hole of diameter %g reached the region its rim can span "
+              "(%zu samples stopped there): the patch may be growing away from the surface.\n",
+              getClassName ().c_str (), loop.diameter, report.outside_bound);
+  if (!report.closed)
+    PCL_WARN ("[pcl_holefill::%s::fillHole] A hole of diameter %g is not closed after %u passes (%s): an opening "
+              "of about %g is left (%zu boundary points).\n",
+              getClassName ().c_str (), loop.diameter, report.passes, toString (report.termination),
+              report.open_diameter, report.open_points);
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<PointT> &search,
+                               const BoundaryLoop &loop, PointCloud &filled, HoleReport &report) const
+{
   filled.clear ();
-  for (std::size_t i = input_points; i < local->size (); ++i)
-    filled.push_back ((*local)[i]);
+  report.boundary_points = loop.indices.size ();
+  report.diameter = loop.diameter;
+  // 1. The rim (usable points only) and the hole's scale.
+  pcl::Indices rim;
+  for (const auto i : loop.indices)
+    if (i >= 0 && static_cast<std::size_t> (i) < working.size () && isOrientedPoint (working[i]))
+      rim.push_back (i);
+  HoleScale scale;
+  if (rim.size () < 3 || !measureRim (working, search, rim, scale))
+  {
+    PCL_WARN ("[pcl_holefill::%s::fillHole] A hole has fewer than 3 usable boundary points, or no spacing "
+              "around them (duplicates?): skipped.\n", getClassName ().c_str ());
+    return;
+  }
+  report.centre = scale.centre;
+  report.spacing = scale.spacing;
+  report.pitch = scale.pitch;
+  report.equilibrium_distance = scale.d_eq;
+  report.radius = scale.radius;
+
+  // 2. The surroundings, and the sampler working on them.
+  Surroundings surroundings;
+  gatherSurroundings (working, search, rim, scale, surroundings);
+  ElasticSampler<PointT> sampler;
+  setUpSampler (sampler, surroundings, scale, report);
+
+  // 3. Do ... Until: contract the boundary pass by pass (sec. 4).
+  Front front (1);
+  front[0].closed = loop.closed;
+  for (const auto i : surroundings.rim)
+  {
+    const PointT &p = (*surroundings.cloud)[i];
+    front[0].vertices.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
+  }
+  const Front last = contractUntilTermination (sampler, surroundings, std::move (front), scale, report);
+
+  // 4. Is it closed? Then the report.
+  checkClosure (surroundings, last, scale, report);
+  const std::size_t added = surroundings.cloud->size () - surroundings.input_points;
+  warnAbout (loop, scale, added, report);
+  for (std::size_t i = surroundings.input_points; i < surroundings.cloud->size (); ++i)
+    filled.push_back ((*surroundings.cloud)[i]);
 }
 
 }  // namespace pcl_holefill

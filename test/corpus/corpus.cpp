@@ -618,6 +618,7 @@ runCase (const Case &c)
   {
     ++o.reported;
     o.closed += r.closed ? 1 : 0;
+    o.resumed += r.resumed > 0 ? 1 : 0;
     std::size_t b = 0;  // the cut ball the report is about: the nearest to its rim's centre
     for (std::size_t i = 1; i < c.holes.size (); ++i)
       if ((r.centre.cast<double> () - c.holes[i].centre).norm () < (r.centre.cast<double> () - c.holes[b].centre).norm ())

@@ -14,6 +14,7 @@
 #include <pcl/search/search.h>
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace pcl_holefill
@@ -210,17 +211,38 @@ private:
     * until the termination rule; returns the boundary where the fill stopped. */
   Front
   contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings, Front front,
-                            const HoleScale &scale, HoleReport &report) const;
+                            const HoleScale &scale, HoleReport &report,
+                            int pass_budget = std::numeric_limits<int>::max ()) const;
 
   /** The termination rule after pass \a pass of this run, \a passes_done in all (kNotStarted: go on). */
   Termination
   terminationOf (const ContractionStats &stats, const Front &next, int pass, float first_length,
                  unsigned passes_done) const;
 
-  /** closed, open_points and open_diameter of \a report: where an empty disc still touches \a last. */
-  void
+  /** closed, open_points and open_diameter of \a report: where an empty disc
+    * still touches \a last or a filled point. Returns the openings' boundaries. */
+  Front
   checkClosure (const Surroundings &surroundings, const Front &last, const HoleScale &scale,
                 HoleReport &report) const;
+
+  /** Whether an empty disc of \a diameter touches \a v in the surroundings;
+    * \a gap_direction receives the direction of the empty side. */
+  bool
+  emptyDiscAt (const Surroundings &surroundings, const FrontVertex &v, float diameter,
+               Eigen::Vector3f &gap_direction) const;
+
+  /** Contracts again from one opening's boundary, confined to the opening. */
+  Front
+  resumeOpening (ElasticSampler<PointT> &sampler, Surroundings &surroundings, FrontChain opening,
+                 const HoleScale &scale, HoleReport &report) const;
+
+  /** The openings worth contracting again: those inside the rim. */
+  static Front
+  resumable (const Front &openings, const HoleScale &scale);
+
+  /** Stopped by the paper's rule (ratio, no new boundary), not cut short. */
+  static bool
+  stoppedNaturally (const HoleReport &report);
 
   /** The warnings a user should see about one hole. */
   void

@@ -35,6 +35,7 @@ struct HoleReport
   bool closed = false;                 //!< no empty disc of 2 d_eq touches the boundary where the fill stopped
   std::size_t open_points = 0;         //!< boundary points where the fill stopped that an empty disc touches
   float open_diameter = 0.f;           //!< largest distance between two of them: the size of what is left
+  unsigned resumed = 0;                //!< times the fill was taken up again from what was left open
   std::size_t outside_bound = 0;       //!< samples stopped at the region the rim can span (a runaway front)
   float diameter = 0.f;                //!< of the boundary loop
   float spacing = 0.f;                 //!< h: mean nearest-neighbour distance of the rim points

@@ -26,7 +26,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <numeric>
 #include <unordered_map>
 
@@ -50,6 +49,8 @@ constexpr float kOpenDiscFill = 0.9f;
 // plane, leave an empty wedge (90 degrees at a cube's corner) even when the
 // surface is complete.
 constexpr std::size_t kMinOpenPoints = 3;
+// An open hole is contracted again from its openings at most this many times.
+constexpr int kResumeRounds = 2;
 // Neighbours from which the sampling pitch around a rim point is measured.
 constexpr int kPitchNeighbours = 16;
 // More neighbouring normals than this pointing opposite ways: not oriented.
@@ -404,6 +405,41 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   sampler.setBoundingBall (scale.centre, scale.bound);
 }
 
+template <typename PointT> Front
+HoleFilling<PointT>::resumeOpening (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
+                                    FrontChain opening, const HoleScale &scale, HoleReport &report) const
+{
+  // The fill of an opening stays in the opening: inside the ball around its
+  // boundary, and within the passes that close it from all sides (about
+  // D / (2 d_eq)) twice over. A front that would go on past either has found
+  // no opening to close (the apex of a corner, whose faces leave an empty
+  // wedge when unfolded) and is cut there, not counted as a runaway.
+  std::vector<Eigen::Vector3f> positions;
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero ();
+  for (const auto &v : opening.vertices)
+  {
+    positions.push_back (v.position);
+    centre += v.position;
+  }
+  centre /= static_cast<float> (std::max<std::size_t> (1, positions.size ()));
+  float radius = 0.f;
+  for (const auto &p : positions)
+    radius = std::max (radius, (p - centre).norm ());
+  sampler.setBoundingBall (centre, radius + scale.d_eq);
+  const int budget = 2 * static_cast<int> (std::ceil (loopDiameter (positions) / (2.f * scale.d_eq))) + 2;
+  const std::size_t outside_before = report.outside_bound;
+  const Front ends = contractUntilTermination (sampler, surroundings, Front{std::move (opening)}, scale, report,
+                                               budget);
+  report.outside_bound = outside_before;
+  return ends;
+}
+
+template <typename PointT> bool
+HoleFilling<PointT>::stoppedNaturally (const HoleReport &report)
+{
+  return report.termination == Termination::kControlRatio || report.termination == Termination::kNoNewBoundary;
+}
+
 template <typename PointT> Termination
 HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &next, int pass,
                                     float first_length, unsigned passes_done) const
@@ -424,7 +460,8 @@ HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &
 
 template <typename PointT> Front
 HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
-                                               Front front, const HoleScale &scale, HoleReport &report) const
+                                               Front front, const HoleScale &scale, HoleReport &report,
+                                               int pass_budget) const
 {
   // Growth is measured against the first contracted boundary, which is
   // sampled like every later one (the input rim is jagged, hence longer).
@@ -434,7 +471,7 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
   std::vector<float> sqr_distances;
   Front next;
   report.termination = Termination::kPassLimit;
-  for (int pass = 0; report.passes < static_cast<unsigned> (max_passes_); ++pass)
+  for (int pass = 0; pass < pass_budget && report.passes < static_cast<unsigned> (max_passes_); ++pass)
   {
     sampler.setRadius (pass_radius);
     sampler.setSigmaD (sigma_d_ > 0.f ? sigma_d_ : 0.5f * pass_radius);
@@ -482,78 +519,114 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
   return front;
 }
 
-template <typename PointT> void
+template <typename PointT> Front
 HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front &last_front,
                                    const HoleScale &scale, HoleReport &report) const
 {
   // The boundary where the fill stopped, and every filled point: a gap left
   // early (between the rim and the first pass, or where a front was cut)
   // lies next to filled points too.
-  std::vector<FrontVertex> last;
+  std::vector<FrontVertex> tested;
   for (const auto &chain : last_front)
-    last.insert (last.end (), chain.vertices.begin (), chain.vertices.end ());
+    tested.insert (tested.end (), chain.vertices.begin (), chain.vertices.end ());
   for (std::size_t i = surroundings.input_points; i < surroundings.cloud->size (); ++i)
   {
     const PointT &p = (*surroundings.cloud)[i];
-    last.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ()});
+    tested.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
   }
-  // A hole is closed when no empty disc wider than kOpenDiscInSpacings d_eq
-  // touches the boundary where the fill stopped: the fronts met everywhere.
+  // Where an empty disc of kOpenDiscInSpacings d_eq touches them, the fronts have not met.
   const float diameter = detail::kOpenDiscInSpacings * scale.d_eq;
-  const PointCloud &cloud = *surroundings.cloud;
-  std::vector<Eigen::Vector3f> positions, normals;
-  std::vector<int> ids;
-  std::vector<Eigen::Vector3f> open;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
-  for (const auto &v : last)
+  std::vector<Eigen::Vector3f> open, open_normals, open_gaps;
+  for (const auto &v : tested)
   {
-    PointT query;
-    query.getVector3fMap () = v.position;
-    surroundings.search->radiusSearch (query, diameter, found, sqr_distances);
-    positions.clear ();
-    normals.clear ();
-    for (std::size_t k = 0; k < found.size (); ++k)
-      if (sqr_distances[k] > 0.f)
-      {
-        positions.push_back (cloud[found[k]].getVector3fMap ());
-        normals.push_back (cloud[found[k]].getNormalVector3fMap ().normalized ());
-      }
-    ids.resize (positions.size ());
-    std::iota (ids.begin (), ids.end (), 0);
-    const int count = static_cast<int> (ids.size ());
-    const AngularGap gap =
-        largestAngularGap (v.position, v.normal, positions.data (), normals.data (), ids.data (), count);
-    if (gap.angle > static_cast<float> (M_PI / 2.0) &&
-        emptyDiscTouches (v.position, v.normal, gap, positions.data (), normals.data (), ids.data (), count,
-                          diameter, detail::kOpenDiscFill * 0.5f * diameter))
+    Eigen::Vector3f gap_direction;
+    if (emptyDiscAt (surroundings, v, diameter, gap_direction))
+    {
       open.push_back (v.position);
+      open_normals.push_back (v.normal);
+      open_gaps.push_back (gap_direction);
+    }
   }
-  // The open points, grouped into openings (linked within a disc's width).
-  // An opening shows on several points spread over more than the disc's
-  // radius; a tight group of a few is the apex of a convex corner, whose
-  // faces, unfolded into one plane, always leave an empty wedge.
-  std::vector<int> group (open.size ());
-  std::iota (group.begin (), group.end (), 0);
-  std::function<int (int)> root = [&] (int i) { return group[i] == i ? i : group[i] = root (group[i]); };
-  for (std::size_t i = 0; i < open.size (); ++i)
-    for (std::size_t j = i + 1; j < open.size (); ++j)
-      if ((open[i] - open[j]).norm () <= diameter)
-        group[root (static_cast<int> (i))] = root (static_cast<int> (j));
-  std::unordered_map<int, std::vector<Eigen::Vector3f>> openings;
-  for (std::size_t i = 0; i < open.size (); ++i)
-    openings[root (static_cast<int> (i))].push_back (open[i]);
+  // The open points, chained into the loops around each opening. An opening
+  // shows on several points spread over more than the disc's radius; a tight
+  // group of a few is the apex of a convex corner, whose faces, unfolded into
+  // one plane, always leave an empty wedge.
+  const auto loops = traceBoundaryLoops (open, open_normals, open_gaps, diameter,
+                                         static_cast<int> (detail::kMinOpenPoints));
+  Front openings;
   report.open_points = 0;
   report.open_diameter = 0.f;
-  for (const auto &opening : openings)
+  for (const auto &loop : loops)
   {
-    const float spread = loopDiameter (opening.second);
-    if (opening.second.size () < detail::kMinOpenPoints || spread < 0.5f * diameter)
+    FrontChain chain;
+    chain.closed = loop.closed;
+    std::vector<Eigen::Vector3f> positions;
+    for (const int m : loop.members)
+    {
+      chain.vertices.push_back ({open[m], open_normals[m]});
+      positions.push_back (open[m]);
+    }
+    const float spread = loopDiameter (positions);
+    if (spread < 0.5f * diameter)
       continue;
-    report.open_points += opening.second.size ();
+    report.open_points += chain.vertices.size ();
     report.open_diameter = std::max (report.open_diameter, spread);
+    openings.push_back (std::move (chain));
   }
-  report.closed = report.open_points == 0 && report.termination != Termination::kNotStarted;
+  report.closed = openings.empty () && report.termination != Termination::kNotStarted;
+  return openings;
+}
+
+template <typename PointT> Front
+HoleFilling<PointT>::resumable (const Front &openings, const HoleScale &scale)
+{
+  // Only openings inside the rim, whose empty side faces their own centre
+  // (a remnant of the hole): an opening at the edge of the region, or one
+  // that is open outwards, is a front growing away and must not be fed.
+  Front kept;
+  for (const auto &chain : openings)
+  {
+    std::vector<Eigen::Vector3f> positions, gaps;
+    bool inside = true;
+    for (const auto &v : chain.vertices)
+    {
+      inside = inside && (v.position - scale.centre).norm () <= scale.rim_radius;
+      positions.push_back (v.position);
+    }
+    if (inside)
+      kept.push_back (chain);
+  }
+  return kept;
+}
+
+template <typename PointT> bool
+HoleFilling<PointT>::emptyDiscAt (const Surroundings &surroundings, const FrontVertex &v, float diameter,
+                                  Eigen::Vector3f &gap_direction) const
+{
+  thread_local std::vector<Eigen::Vector3f> positions, normals;
+  thread_local std::vector<int> ids;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  PointT query;
+  query.getVector3fMap () = v.position;
+  surroundings.search->radiusSearch (query, diameter, found, sqr_distances);
+  positions.clear ();
+  normals.clear ();
+  for (std::size_t k = 0; k < found.size (); ++k)
+    if (sqr_distances[k] > 0.f)
+    {
+      positions.push_back ((*surroundings.cloud)[found[k]].getVector3fMap ());
+      normals.push_back ((*surroundings.cloud)[found[k]].getNormalVector3fMap ().normalized ());
+    }
+  ids.resize (positions.size ());
+  std::iota (ids.begin (), ids.end (), 0);
+  const int count = static_cast<int> (ids.size ());
+  const AngularGap gap =
+      largestAngularGap (v.position, v.normal, positions.data (), normals.data (), ids.data (), count);
+  gap_direction = gap.direction;
+  return gap.angle > static_cast<float> (M_PI / 2.0) &&
+         emptyDiscTouches (v.position, v.normal, gap, positions.data (), normals.data (), ids.data (), count,
+                           diameter, detail::kOpenDiscFill * 0.5f * diameter);
 }
 
 template <typename PointT> void
@@ -619,8 +692,25 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   }
   const Front last = contractUntilTermination (sampler, surroundings, std::move (front), scale, report);
 
-  // 4. Is it closed? Then the report.
-  checkClosure (surroundings, last, scale, report);
+  // 4. Is it closed? Where it is not and the fronts stopped by the paper's
+  // rule, a part of the hole was abandoned (a front cut where its candidates
+  // overshot, typically on rough estimated normals along an edge, while the
+  // rest closed elsewhere): contract again from each opening's own boundary.
+  Front openings = resumable (checkClosure (surroundings, last, scale, report), scale);
+  for (int round = 0; round < detail::kResumeRounds && !openings.empty () && stoppedNaturally (report) &&
+                      report.outside_bound == 0;
+       ++round)
+  {
+    Front again;
+    for (auto &opening : openings)
+    {
+      const Front ends = resumeOpening (sampler, surroundings, std::move (opening), scale, report);
+      again.insert (again.end (), ends.begin (), ends.end ());
+    }
+    sampler.setBoundingBall (scale.centre, scale.bound);
+    openings = resumable (checkClosure (surroundings, again, scale, report), scale);
+    ++report.resumed;
+  }
   const std::size_t added = surroundings.cloud->size () - surroundings.input_points;
   warnAbout (loop, scale, added, report);
   for (std::size_t i = surroundings.input_points; i < surroundings.cloud->size (); ++i)

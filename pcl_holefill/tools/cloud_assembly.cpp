@@ -4,13 +4,12 @@
  */
 #include "cloud_assembly.h"
 
-#include <pcl_holefill/normal_orientation.h>
+#include "normal_estimation.h"
+
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/common/io.h>
 #include <pcl/conversions.h>
-#include <pcl/features/normal_3d_omp.h>
-#include <pcl/search/kdtree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -115,17 +114,9 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
   }
   else
   {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr shared (new pcl::PointCloud<pcl::PointXYZ> (xyz));
-    shared->is_dense = prepared.finite_points == xyz.size ();
-    pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation (threads);
-    estimation.setInputCloud (shared);
-    estimation.setSearchMethod (pcl::search::KdTree<pcl::PointXYZ>::Ptr (new pcl::search::KdTree<pcl::PointXYZ>));
-    estimation.setKSearch (16);
+    estimateOrientedNormals (*prepared.points, threads);
     pcl::PointCloud<pcl::Normal> normals;
-    estimation.compute (normals);
-    for (std::size_t i = 0; i < normals.size (); ++i)
-      (*prepared.points)[i].getNormalVector3fMap () = normals[i].getNormalVector3fMap ();
-    pcl_holefill::orientNormalsConsistently (*prepared.points);
+    normals.resize (prepared.points->size ());
     for (std::size_t i = 0; i < normals.size (); ++i)
       normals[i].getNormalVector3fMap () = (*prepared.points)[i].getNormalVector3fMap ();
     pcl::PCLPointCloud2 normal_fields, merged;

@@ -153,7 +153,7 @@ TEST_F (Command, BadInputGetsOneLineAndANonZeroExit)
       path ("in.pcd") + " " + path ("o.xyz"),
       path ("in.pcd") + " " + path ("o.pcd") + " -radius -1",
       path ("in.pcd") + " " + path ("o.pcd") + " -sigma_n nan",
-      path ("in.pcd") + " " + path ("o.pcd") + " -max_passes 0",
+      path ("in.pcd") + " " + path ("o.pcd") + " -max_passes -1",
       path ("in.pcd") + " " + path ("o.pcd") + " -no_such_option",
       path ("in.pcd"),
   };

@@ -231,7 +231,7 @@ TEST (HoleFilling, InvalidParametersLeaveTheOutputEmpty)
       [] (auto &f) { f.setRadius (-1.f); },           [nan] (auto &f) { f.setRadius (nan); },
       [] (auto &f) { f.setSigmaN (0.f); },            [nan] (auto &f) { f.setSigmaN (nan); },
       [] (auto &f) { f.setSigmaR (-0.1f); },          [] (auto &f) { f.setRadiusShrinkFactor (0.5f); },
-      [] (auto &f) { f.setTerminationRatio (1.5f); }, [] (auto &f) { f.setMaxPasses (0); },
+      [] (auto &f) { f.setTerminationRatio (1.5f); }, [] (auto &f) { f.setMaxPasses (-1); },
       [nan] (auto &f) { f.setSigmaD (nan); },         [] (auto &f) { f.setSpacingFactor (0.f); },
   };
   for (std::size_t k = 0; k < bad.size (); ++k)

@@ -231,7 +231,7 @@ TEST (BadParameters, EveryClassRefusesNegativeZeroAndNan)
         if (which == 0)
           f.setSigmaN (bad);
         if (which == 1)
-          f.setMaxPasses (static_cast<int> (std::isnan (bad) ? -5 : bad));
+          f.setMaxPasses (static_cast<int> (std::isnan (bad) ? -5 : bad - 1.f));  // 0 is automatic
         if (which == 2)
           f.setTerminationRatio (std::isnan (bad) ? bad : bad - 1.f);
         if (which == 3)

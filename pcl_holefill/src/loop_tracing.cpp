@@ -176,9 +176,11 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
         backward.pop_back ();  // the start, already in forward
         backward.insert (backward.end (), forward.begin (), forward.end ());
         forward.swap (backward);
-        // Both walks went round and met: a loop after all (a sharp corner stopped one).
+        // Both walks went round and met: a loop after all (a sharp corner, or
+        // the last points absorbed by a ragged rim, stopped one). The ends may
+        // be as far apart as a walk stuck next to home is allowed to be.
         closed = forward.size () > 4 && loopLength (pathPositions (forward, positions), false) > 3.f * link_distance &&
-                 (positions[forward.front ()] - positions[forward.back ()]).norm () <= link_distance;
+                 (positions[forward.front ()] - positions[forward.back ()]).norm () <= 2.f * link_distance;
       }
       if (static_cast<int> (forward.size ()) >= min_points)
         loops.push_back ({forward, closed});

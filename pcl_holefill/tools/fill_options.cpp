@@ -57,7 +57,7 @@ usage (const char *program)
       << "cloud's units; 0 means derived from the nearest-neighbour spacing h or the sampling\n"
       << "pitch p (sqrt(area per point)) around each hole.\n\n"
       << "Options (default):\n"
-      << "  -radius R         neighbourhood radius r of eq. (1),(7); 0 = max(4h, 2.5 d_eq)   " << def (d.getRadius ())
+      << "  -radius R         neighbourhood r of eq. (1),(7); 0 = max(4h, 3.5p, 2.5 d_eq)     " << def (d.getRadius ())
       << "  -sigma_n S|sup    normal dissimilarity std (no unit); small = sharp edges,\n"
       << "                    'sup' = off, round patches                                   " << def (d.getSigmaN ())
       << "  -sigma_r S        elastic force width; spacing of new points d_eq = S^2 ln(1e4);\n"
@@ -66,7 +66,7 @@ usage (const char *program)
       << "  -sigma_d S        distance weight std; 0 = r/2                                   " << def (d.getSigmaD ())
       << "  -shrink F         r <- r/F after each pass (>= 1; the paper's 1.1)               " << def (d.getRadiusShrinkFactor ())
       << "  -ratio T          stop a hole when kept control points / boundary points < T   " << def (d.getTerminationRatio ())
-      << "  -max_passes N     bound on passes per hole (1..100000)                           " << def (static_cast<float> (d.getMaxPasses ()))
+      << "  -max_passes N     bound on passes per hole (0..100000); 0 = 4 x diameter / d_eq + 20 " << def (static_cast<float> (d.getMaxPasses ()))
       << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
       << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
       << "  -min_hole_size P  smallest hole, as an empty disc P sampling pitches across\n"
@@ -137,9 +137,9 @@ parseOptions (int argc, char **argv, Options &options, std::string &error)
       if (!value (text))
         return false;
       const bool passes = arg == "-max_passes";
-      if (!toInt (text, n) || (passes ? (n < 1 || n > 100000) : (n < 0 || n > 1024)))
+      if (!toInt (text, n) || (passes ? (n < 0 || n > 100000) : (n < 0 || n > 1024)))
       {
-        error = arg + (passes ? " takes a whole number from 1 to 100000" : " takes a whole number from 0 to 1024") +
+        error = arg + (passes ? " takes a whole number from 0 to 100000" : " takes a whole number from 0 to 1024") +
                 ", not '" + text + "'";
         return false;
       }

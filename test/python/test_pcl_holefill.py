@@ -188,7 +188,7 @@ def test_nan_rows_are_kept_and_skipped(corner):
     (lambda p, n: pcl_holefill.fill(p, n, radius=-1), ValueError, "radius takes a number"),
     (lambda p, n: pcl_holefill.fill(p, n, sigma_n="sharp"), ValueError, "sigma_n takes a number > 0 or 'sup'"),
     (lambda p, n: pcl_holefill.fill(p, n, sigma_n=[1]), TypeError, "sigma_n takes"),
-    (lambda p, n: pcl_holefill.fill(p, n, max_passes=0), ValueError, "max_passes takes a whole number"),
+    (lambda p, n: pcl_holefill.fill(p, n, max_passes=-1), ValueError, "max_passes takes a whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, max_passes=2.5), TypeError, "whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, threads=-1), ValueError, "threads takes a whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, spacing=True), TypeError, "takes a number"),

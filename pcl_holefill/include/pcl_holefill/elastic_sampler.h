@@ -11,6 +11,7 @@
 #include <pcl/pcl_base.h>
 #include <pcl/search/search.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_holefill
@@ -103,6 +104,16 @@ public:
   float
   getConstraintTolerance () const { return tolerance_; }
 
+  /** \brief Reach of the combination constraint: the reference points a
+    * sample is tested against, and the neighbours that label them convex or
+    * concave (cloud units; 0 = r, default). Kept near the sampling pitch
+    * when r is wide: a wider reach labels points far from an edge as convex
+    * and tests each sample against more noisy tangent planes. */
+  void
+  setConstraintRadius (float radius) { constraint_radius_ = radius; }
+  float
+  getConstraintRadius () const { return constraint_radius_; }
+
   /** \brief Switches the combination constraint (default on). */
   void
   setCombinationConstraint (bool enabled) { combination_constraint_ = enabled; }
@@ -152,9 +163,18 @@ private:
   bool
   overshoots (const Eigen::Vector3f &position) const;
 
+  /** The constraint's reach: its radius, at most r. */
+  float
+  constraintReach () const
+  {
+    const float r = propagation_.getRadius ();
+    return constraint_radius_ > 0.f ? std::min (constraint_radius_, r) : r;
+  }
+
   NormalPropagation<PointT> propagation_;
   float equilibrium_distance_ = 0.f;
   float tolerance_ = 0.f;
+  float constraint_radius_ = 0.f;
   bool combination_constraint_ = true;
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
   float bound_radius_ = 0.f;

@@ -36,7 +36,7 @@ namespace pcl_holefill
   * at 0, derived from the mean nearest-neighbour distance h and the sampling
   * pitch p around each hole, so the
   * defaults work on any cloud without tuning:
-  *  - r (setRadius): neighbourhood of eq. (1) and (7); 0 = max(4h, 2.5 d_eq).
+  *  - r (setRadius): neighbourhood of eq. (1) and (7); 0 = max(4h, 3.5p, 2.5 d_eq).
   *  - shrink (setRadiusShrinkFactor): r <- r / shrink each pass (the paper's
   *    Fig. 1(c) uses 1.1); 1 = constant. r never drops under max(2h, 1.5 d_eq).
   *  - sigma_d (setSigmaD): std of g1; 0 = r/2.
@@ -56,7 +56,9 @@ namespace pcl_holefill
   *    samples h is about p/2, on Poisson-disk samples 0.9 p).
   *  - termination ratio (setTerminationRatio): stop a hole when kept control
   *    points / boundary points < ratio (paper: 30 %).
-  *  - max passes (setMaxPasses): hard bound per hole (default 200).
+  *  - max passes (setMaxPasses): hard bound on passes per hole; 0 (default)
+  *    = automatic, 4 x rim diameter / d_eq + 20 (four times what closing
+  *    the hole from all sides takes, so a large hole is never cut short).
   *  - first order (setFirstOrder): continue the rim's curvature (default
   *    true; false is the paper's zero-order eq. (1), which makes cones).
   *  - denoise (setDenoise): the bilateral preprocessing of sec. 3.2 on the
@@ -174,8 +176,10 @@ private:
     float pitch = 0.f;       //!< sqrt(surface area per point) around the rim (median)
     float d_eq = 0.f;        //!< equilibrium distance: the spacing of the filled points
     float radius = 0.f;      //!< r of the first pass
+    float constraint_radius = 0.f;  //!< reach of the combination constraint
     float min_radius = 0.f;  //!< r never shrinks below this
     float bound = 0.f;       //!< the fill stays this close to the centre
+    int max_passes = 0;      //!< bound on passes for this hole
   };
 
   /** A hole's surroundings, copied: the fill grows this cloud, never the input. */
@@ -217,7 +221,7 @@ private:
   /** The termination rule after pass \a pass of this run, \a passes_done in all (kNotStarted: go on). */
   Termination
   terminationOf (const ContractionStats &stats, const Front &next, int pass, float first_length,
-                 unsigned passes_done) const;
+                 unsigned passes_done, int max_passes) const;
 
   /** closed, open_points and open_diameter of \a report: where an empty disc
     * still touches \a last or a filled point. Returns the openings' boundaries. */
@@ -263,7 +267,7 @@ private:
   float sigma_r_ = 0.f;
   float spacing_factor_ = 1.1f;
   float termination_ratio_ = 0.3f;
-  int max_passes_ = 200;
+  int max_passes_ = 0;
   float max_growth_ = 1.5f;
   bool first_order_ = true;
   bool combination_constraint_ = true;

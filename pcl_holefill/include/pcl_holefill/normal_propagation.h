@@ -69,9 +69,10 @@ public:
   bool
   getFirstOrder () const { return first_order_; }
 
-  /** \brief The oriented input points within r of \a position. */
+  /** \brief The oriented input points within r of \a position (within
+    * \a radius instead when it is given, > 0). */
   void
-  gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours) const;
+  gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours, float radius = 0.f) const;
 
   /** \brief Equation (1) at \a position with reference normal \a reference_normal. */
   SurfaceEstimate

@@ -33,7 +33,7 @@ _INTS = ("max_passes", "threads")
 _FLAGS = ("zero_order", "denoise", "quiet")
 
 _OPTION_HELP = {
-    "radius": "neighbourhood radius r of eq. (1), (7) in cloud units; 0 = max(4h, 2.5 d_eq)",
+    "radius": "neighbourhood radius r of eq. (1), (7) in cloud units; 0 = max(4h, 3.5p, 2.5 d_eq)",
     "sigma_n": "normal dissimilarity std (no unit), or 'sup' to switch it off (round patches); "
                "small values recover sharp edges",
     "sigma_r": "elastic force width; d_eq = sigma_r^2 ln(1e4); 0 = d_eq from spacing",
@@ -41,7 +41,7 @@ _OPTION_HELP = {
     "sigma_d": "distance weight std; 0 = r / 2",
     "shrink": "r <- r / shrink after each pass (>= 1; the paper's 1.1)",
     "ratio": "stop a hole when kept control points / boundary points < ratio (0..0.999)",
-    "max_passes": "bound on contraction passes per hole (1..100000)",
+    "max_passes": "bound on contraction passes per hole (0..100000); 0 = 4 x hole diameter / d_eq + 20",
     "zero_order": "the paper's eq. (1) as printed (cones on smooth holes)",
     "denoise": "bilateral preprocessing first (moves input points)",
     "min_hole_size": "smallest hole: an empty disc this many sampling pitches across (2..100)",

@@ -94,7 +94,7 @@ ElasticSampler<PointT>::curvatureSign (int index) const
   const Eigen::Vector3f centre = q.getVector3fMap ();
   const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
   Neighbourhood neighbours;
-  propagation_.gatherNeighbourhood (centre, neighbours);
+  propagation_.gatherNeighbourhood (centre, neighbours, constraintReach ());
   float total = 0.f, offset = 0.f;
   for (std::size_t i = 0; i < neighbours.size (); ++i)
   {
@@ -115,7 +115,7 @@ ElasticSampler<PointT>::overshoots (const Eigen::Vector3f &position) const
   query.getVector3fMap () = position;
   pcl::Indices found;
   std::vector<float> sqr_distances;
-  propagation_.getSearchMethod ()->radiusSearch (query, propagation_.getRadius (), found, sqr_distances);
+  propagation_.getSearchMethod ()->radiusSearch (query, constraintReach (), found, sqr_distances);
   for (const auto i : found)
   {
     const int sign = curvatureSign (i);

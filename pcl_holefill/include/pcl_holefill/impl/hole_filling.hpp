@@ -51,6 +51,10 @@ constexpr float kOpenDiscFill = 0.9f;
 constexpr std::size_t kMinOpenPoints = 3;
 // An open hole is contracted again from its openings at most this many times.
 constexpr int kResumeRounds = 2;
+// ... when its boundary normals are within ~25 degrees of their mean.
+constexpr float kResumeMinNormalCosine = 0.9f;
+// Passes beyond four times the passes that close a hole, when the bound is automatic.
+constexpr int kAutoPassesSlack = 20;
 // Neighbours from which the sampling pitch around a rim point is measured.
 constexpr int kPitchNeighbours = 16;
 // More neighbouring normals than this pointing opposite ways: not oriented.
@@ -113,8 +117,8 @@ HoleFilling<PointT>::checkParameters () const
     bad = "spacing factor (0.25..10)";
   else if (!(termination_ratio_ >= 0.f && termination_ratio_ < 1.f))
     bad = "termination ratio (0..1)";
-  else if (max_passes_ < 1 || max_passes_ > 100000)
-    bad = "max passes (1..100000)";
+  else if (max_passes_ < 0 || max_passes_ > 100000)
+    bad = "max passes (0..100000, 0 = automatic)";
   else if (!(max_growth_ >= 1.f && std::isfinite (max_growth_)))
     bad = "max boundary growth (>= 1)";
   else if (!non_negative (max_hole_diameter_))
@@ -346,9 +350,18 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
   const float h = scale.spacing;
   scale.d_eq = sigma_r_ > 0.f ? ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
                               : spacing_factor_ * scale.pitch;
-  scale.radius = radius_ > 0.f ? radius_ : std::max (4.f * h, 2.5f * scale.d_eq);
+  // r reaches 3.5 pitches at least: on random samples (h = p / 2) 4 h alone
+  // is too few neighbours, and a fill of 150 passes drifts off the surface.
+  // The combination constraint keeps the reach of 4 h (see setConstraintRadius).
+  scale.radius = radius_ > 0.f ? radius_ : std::max ({4.f * h, 3.5f * scale.pitch, 2.5f * scale.d_eq});
+  scale.constraint_radius = radius_ > 0.f ? 0.f : std::max (4.f * h, 2.5f * scale.d_eq);
   scale.min_radius = std::max (2.f * h, 1.5f * scale.d_eq);
   scale.bound = detail::kBoundScale * scale.rim_radius + 2.f * scale.d_eq;
+  // Fronts move d_eq a pass from every side: about diameter / (2 d_eq)
+  // passes close the hole. The automatic bound leaves four times that.
+  scale.max_passes = max_passes_ > 0 ? max_passes_
+                                     : detail::kAutoPassesSlack +
+                                           static_cast<int> (std::ceil (2.f * 2.f * scale.rim_radius / scale.d_eq));
   return scale.d_eq > 0.f && std::isfinite (scale.d_eq);
 }
 
@@ -402,6 +415,7 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   sampler.setConstraintTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));
   sampler.setCombinationConstraint (combination_constraint_);
+  sampler.setConstraintRadius (scale.constraint_radius);
   sampler.setBoundingBall (scale.centre, scale.bound);
 }
 
@@ -409,11 +423,12 @@ template <typename PointT> Front
 HoleFilling<PointT>::resumeOpening (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
                                     FrontChain opening, const HoleScale &scale, HoleReport &report) const
 {
-  // The fill of an opening stays in the opening: inside the ball around its
-  // boundary, and within the passes that close it from all sides (about
-  // D / (2 d_eq)) twice over. A front that would go on past either has found
-  // no opening to close (the apex of a corner, whose faces leave an empty
-  // wedge when unfolded) and is cut there, not counted as a runaway.
+  // The fill of an opening closes in on it: pass k stays inside the ball
+  // around the opening's boundary shrunk by k d_eq / 2 (fronts move in by
+  // d_eq a pass), within twice the passes that close it from all sides. A
+  // front that does not close in (one face's front running past an edge
+  // whose other face has no fill yet, the apex of a corner) is cut there,
+  // not counted as a runaway.
   std::vector<Eigen::Vector3f> positions;
   Eigen::Vector3f centre = Eigen::Vector3f::Zero ();
   for (const auto &v : opening.vertices)
@@ -425,11 +440,19 @@ HoleFilling<PointT>::resumeOpening (ElasticSampler<PointT> &sampler, Surrounding
   float radius = 0.f;
   for (const auto &p : positions)
     radius = std::max (radius, (p - centre).norm ());
-  sampler.setBoundingBall (centre, radius + scale.d_eq);
   const int budget = 2 * static_cast<int> (std::ceil (loopDiameter (positions) / (2.f * scale.d_eq))) + 2;
   const std::size_t outside_before = report.outside_bound;
-  const Front ends = contractUntilTermination (sampler, surroundings, Front{std::move (opening)}, scale, report,
-                                               budget);
+  Front ends{std::move (opening)};
+  for (int pass = 0; pass < budget; ++pass)
+  {
+    const float ball = radius + scale.d_eq - 0.5f * static_cast<float> (pass) * scale.d_eq;
+    if (!(ball > 0.f))
+      break;
+    sampler.setBoundingBall (centre, ball);
+    ends = contractUntilTermination (sampler, surroundings, std::move (ends), scale, report, 1);
+    if (report.termination != Termination::kPassLimit || report.passes >= static_cast<unsigned> (scale.max_passes))
+      break;
+  }
   report.outside_bound = outside_before;
   return ends;
 }
@@ -442,7 +465,7 @@ HoleFilling<PointT>::stoppedNaturally (const HoleReport &report)
 
 template <typename PointT> Termination
 HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &next, int pass,
-                                    float first_length, unsigned passes_done) const
+                                    float first_length, unsigned passes_done, int max_passes) const
 {
   if (frontSize (next) < 3)
     return Termination::kNoNewBoundary;
@@ -453,7 +476,7 @@ HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &
     return Termination::kControlRatio;
   if (pass > 0 && frontLength (next) > max_growth_ * first_length)
     return Termination::kDiverging;
-  if (passes_done >= static_cast<unsigned> (max_passes_))
+  if (passes_done >= static_cast<unsigned> (max_passes))
     return Termination::kPassLimit;
   return Termination::kNotStarted;  // not yet: go on
 }
@@ -471,7 +494,7 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
   std::vector<float> sqr_distances;
   Front next;
   report.termination = Termination::kPassLimit;
-  for (int pass = 0; pass < pass_budget && report.passes < static_cast<unsigned> (max_passes_); ++pass)
+  for (int pass = 0; pass < pass_budget && report.passes < static_cast<unsigned> (scale.max_passes); ++pass)
   {
     sampler.setRadius (pass_radius);
     sampler.setSigmaD (sigma_d_ > 0.f ? sigma_d_ : 0.5f * pass_radius);
@@ -504,7 +527,7 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
     surroundings.search->indexNewPoints ();
     if (pass == 0)
       first_length = frontLength (next);
-    const Termination end = terminationOf (stats, next, pass, first_length, report.passes);
+    const Termination end = terminationOf (stats, next, pass, first_length, report.passes, scale.max_passes);
     if (end != Termination::kNotStarted)
     {
       report.termination = end;
@@ -580,20 +603,26 @@ HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front
 template <typename PointT> Front
 HoleFilling<PointT>::resumable (const Front &openings, const HoleScale &scale)
 {
-  // Only openings inside the rim, whose empty side faces their own centre
-  // (a remnant of the hole): an opening at the edge of the region, or one
-  // that is open outwards, is a front growing away and must not be fed.
+  // Only openings inside the rim and on one smooth piece of surface (their
+  // boundary normals within kResumeMaxNormalSpread of their mean). An
+  // opening across an edge or a corner is not taken up: contracted alone,
+  // one face's front runs past the edge where the other face has no fill
+  // to stop it (the combination constraint needs both).
   Front kept;
   for (const auto &chain : openings)
   {
-    std::vector<Eigen::Vector3f> positions, gaps;
     bool inside = true;
+    Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
     for (const auto &v : chain.vertices)
     {
       inside = inside && (v.position - scale.centre).norm () <= scale.rim_radius;
-      positions.push_back (v.position);
+      mean += v.normal;
     }
-    if (inside)
+    const bool smooth = mean.norm () > 0.f &&
+                        std::all_of (chain.vertices.begin (), chain.vertices.end (), [&] (const FrontVertex &v) {
+                          return v.normal.dot (mean.normalized ()) >= detail::kResumeMinNormalCosine;
+                        });
+    if (inside && smooth)
       kept.push_back (chain);
   }
   return kept;

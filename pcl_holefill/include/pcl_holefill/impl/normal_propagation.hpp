@@ -34,14 +34,15 @@ NormalPropagation<PointT>::checkParameters (const char *caller) const
 }
 
 template <typename PointT> void
-NormalPropagation<PointT>::gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours) const
+NormalPropagation<PointT>::gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours,
+                                                float radius) const
 {
   neighbours.clear ();
   PointT query;
   query.getVector3fMap () = position;
   pcl::Indices found;
   std::vector<float> sqr_distances;
-  search_->radiusSearch (query, radius_, found, sqr_distances);
+  search_->radiusSearch (query, radius > 0.f ? radius : radius_, found, sqr_distances);
   for (const auto i : found)
   {
     const PointT &p = (*input_)[i];

@@ -197,3 +197,73 @@ TEST_F (Command, HelpListsEveryOption)
                              "-max_hole_size", "-holes", "-report", "-png", "-q"})
     EXPECT_NE (text.find (option), std::string::npos) << option;
 }
+
+TEST_F (Command, SaysNothingOfPclsOwnAndEstimatesZeroNormals)
+{
+  // A PLY with normals but no curvature: PCL's conversions would print
+  // "Failed to find match for field 'curvature'" on every run.
+  ASSERT_EQ (pcl::io::savePLYFileASCII (path ("n.ply"), cut_.kept), 0);
+  ASSERT_EQ (run (path ("n.ply") + " " + path ("out.ply")), 0) << stderrText ();
+  EXPECT_EQ (stderrText ().find ("Failed to find match"), std::string::npos) << stderrText ();
+  ASSERT_EQ (run (path ("n.ply") + " " + path ("out.ply") + " -q"), 0);
+  EXPECT_EQ (stderrText (), "");
+
+  // Normals written as 0 0 0 ("no normal"): estimated for the fill, said so,
+  // and the input rows keep their zeros.
+  shapes::Cloud zero = cut_.kept;
+  for (auto &p : zero)
+    p.normal_x = p.normal_y = p.normal_z = 0.f;
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("z.pcd"), zero), 0);
+  ASSERT_EQ (run (path ("z.pcd") + " " + path ("out.pcd")), 0) << stderrText ();
+  EXPECT_NE (stderrText ().find ("zero or not finite"), std::string::npos) << stderrText ();
+  pcl::PointCloud<pcl::PointNormal> out;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("out.pcd"), out), 0);
+  ASSERT_GT (out.size (), zero.size ());
+  for (std::size_t i = 0; i < zero.size (); ++i)
+    ASSERT_EQ (out[i].getNormalVector3fMap (), Eigen::Vector3f::Zero ());
+  // PCA normals round the corner: as EstimatesNormalsForAPlyWithoutThem.
+  for (std::size_t i = zero.size (); i < out.size (); ++i)
+    EXPECT_LT (shapes::cube ().distance (out[i].getVector3fMap ().cast<double> ()), 0.06);
+}
+
+TEST_F (Command, UnwritablePathsAreRefusedBeforeAnyWork)
+{
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);
+  for (const std::string &args : {path ("in.pcd") + " " + path ("no/such/out.pcd"),
+                                  path ("in.pcd") + " " + path ("out.pcd") + " -report " + path ("no/r.json"),
+                                  path ("in.pcd") + " " + path ("out.pcd") + " -png " + path ("no/p.png")})
+  {
+    EXPECT_EQ (run (args), 1) << args;
+    const std::string text = stderrText ();
+    EXPECT_NE (text.find ("cannot write"), std::string::npos) << text;
+    EXPECT_EQ (text.find ("points"), std::string::npos) << "worked before refusing: " << text;
+    EXPECT_FALSE (fs::exists (path ("out.pcd")));
+  }
+}
+
+TEST_F (Command, GivenLoopsAreMeasuredInTheReport)
+{
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("out.pcd") + " -report " + path ("auto.json")), 0);
+  // The rim of the cut ball, as a user would list it: every input point within
+  // a spacing of the ball's surface, in any order the filler then refines.
+  std::ofstream holes (path ("holes.txt"));
+  for (std::size_t i = 0; i < cut_.kept.size (); ++i)
+    if ((cut_.kept[i].getVector3fMap () - Eigen::Vector3f::Ones ()).norm () < 0.215f)
+      holes << i << ' ';
+  holes << '\n';
+  holes.close ();
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("out.pcd") + " -holes " + path ("holes.txt") + " -report " +
+                 path ("given.json")),
+            0)
+      << stderrText ();
+  std::ifstream in (path ("given.json"));
+  const std::string json ((std::istreambuf_iterator<char> (in)), {});
+  const auto at = json.find ("\"diameter\": ");
+  ASSERT_NE (at, std::string::npos) << json;
+  const double diameter = std::atof (json.c_str () + at + 12);
+  // The rim is three quarter circles of radius ~0.2 on the cube's faces around the corner.
+  EXPECT_GT (diameter, 0.25) << json;
+  EXPECT_LT (diameter, 0.45) << json;
+  EXPECT_NE (json.find ("\"centre\": ["), std::string::npos);
+}

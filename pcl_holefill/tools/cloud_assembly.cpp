@@ -19,6 +19,11 @@ namespace pcl_holefill_tool
 {
 namespace
 {
+// A normal shorter than this is "no normal".
+constexpr float kMinNormalLength = 1e-3f;
+// Fewer usable normals than this share of the finite points: estimate them all.
+constexpr double kMinUsableNormalShare = 0.5;
+
 bool
 hasFloatField (const pcl::PCLPointCloud2 &cloud, const std::string &name)
 {
@@ -104,15 +109,31 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
     error = "the cloud has no finite point";
     return false;
   }
+  // The file's normals, read field by field (PCL's conversion to a point
+  // type with a curvature field prints a warning for every cloud without one).
+  std::size_t usable_normals = 0;
   if (has_normals)
   {
-    pcl::PointCloud<pcl::Normal> normals;
-    pcl::fromPCLPointCloud2 (file_cloud, normals);
-    for (std::size_t i = 0; i < normals.size (); ++i)
-      (*prepared.points)[i].getNormalVector3fMap () = normals[i].getNormalVector3fMap ();
-    prepared.normals_estimated = false;
+    const std::uint32_t n[3] = {offsetOf (file_cloud, "normal_x"), offsetOf (file_cloud, "normal_y"),
+                                offsetOf (file_cloud, "normal_z")};
+    for (std::size_t i = 0; i < prepared.points->size (); ++i)
+    {
+      const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
+      float v[3];
+      for (int k = 0; k < 3; ++k)
+        std::memcpy (&v[k], row + n[k], sizeof (float));
+      (*prepared.points)[i].getNormalVector3fMap () = Eigen::Vector3f (v[0], v[1], v[2]);
+      const float length = Eigen::Vector3f (v[0], v[1], v[2]).norm ();
+      usable_normals += std::isfinite (length) && length > kMinNormalLength ? 1 : 0;
+    }
   }
-  else
+  // Normals that are mostly 0 0 0 or not finite (how some tools write "no
+  // normal") are estimated for the fill; the input rows keep theirs.
+  prepared.normals_unusable = has_normals && usable_normals < kMinUsableNormalShare * prepared.finite_points;
+  if (has_normals && prepared.normals_unusable)
+    estimateOrientedNormals (*prepared.points, threads);
+  prepared.normals_estimated = !has_normals || prepared.normals_unusable;
+  if (!has_normals)
   {
     estimateOrientedNormals (*prepared.points, threads);
     pcl::PointCloud<pcl::Normal> normals;
@@ -129,7 +150,6 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
       return false;
     }
     prepared.fields = merged;
-    prepared.normals_estimated = true;
   }
   prepared.points->width = static_cast<std::uint32_t> (prepared.points->size ());
   prepared.points->height = 1;

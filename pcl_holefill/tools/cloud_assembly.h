@@ -17,7 +17,8 @@ struct PreparedCloud
 {
   pcl::PCLPointCloud2 fields;                              //!< every field of the file (+ normals if estimated)
   pcl::PointCloud<pcl::PointNormal>::Ptr points;           //!< xyz and normals, same order
-  bool normals_estimated = false;
+  bool normals_estimated = false;                          //!< points carry estimated normals
+  bool normals_unusable = false;                           //!< the file had normals, mostly zero or not finite
   std::size_t finite_points = 0;
 };
 

@@ -20,6 +20,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include <unistd.h>
+
 using namespace pcl_holefill_tool;
 
 namespace
@@ -44,12 +46,27 @@ writePicture (const Options &options, const pcl::PointCloud<pcl::PointNormal> &o
   return savePng (picture, options.png_file, error);
 }
 
+/** Whether \a path can be written (an existing file, or a new one in an
+  * existing, writable folder), checked before any work. */
+bool
+writable (const std::string &path)
+{
+  if (::access (path.c_str (), F_OK) == 0)
+    return ::access (path.c_str (), W_OK) == 0;
+  const auto slash = path.find_last_of ('/');
+  const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr (0, slash));
+  return ::access (folder.c_str (), W_OK | X_OK) == 0;
+}
+
 int
 run (const Options &options)
 {
   const auto start = std::chrono::steady_clock::now ();
   if (cloudFormat (options.output).empty ())
     return fail ("unknown file type of '" + options.output + "' (expected .pcd or .ply)");
+  for (const std::string *path : {&options.output, &options.report_file, &options.png_file})
+    if (!path->empty () && !writable (*path))
+      return fail ("cannot write '" + *path + "' (no such folder, or no permission)");
   std::string error;
   pcl::PCLPointCloud2 file_cloud;
   if (!loadCloud (options.input, file_cloud, error))
@@ -61,7 +78,10 @@ run (const Options &options)
   {
     std::fprintf (stderr, "pcl_holefill: %s: %zu points (%zu finite)\n", options.input.c_str (),
                   prepared.points->size (), prepared.finite_points);
-    if (prepared.normals_estimated)
+    if (prepared.normals_unusable)
+      std::fprintf (stderr, "pcl_holefill: note: most normals in the input are zero or not finite: estimated "
+                            "(k = 16) and oriented for the fill; the input rows keep theirs\n");
+    else if (prepared.normals_estimated)
       std::fprintf (stderr, "pcl_holefill: note: no normals in the input: estimated (k = 16) and oriented\n");
   }
 

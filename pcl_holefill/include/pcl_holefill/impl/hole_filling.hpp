@@ -171,6 +171,13 @@ HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const Sear
       }
       i = working_of[i];
     }
+    // Measured like a detected loop: the report and the warnings need its size.
+    std::vector<Eigen::Vector3f> positions;
+    for (const auto i : mapped.indices)
+      if (isOrientedPoint ((*working)[i]))
+        positions.push_back ((*working)[i].getVector3fMap ());
+    mapped.length = loopLength (positions, mapped.closed);
+    mapped.diameter = loopDiameter (positions);
     holes.push_back (std::move (mapped));
   }
   return true;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -266,4 +267,45 @@ TEST_F (Command, GivenLoopsAreMeasuredInTheReport)
   EXPECT_GT (diameter, 0.25) << json;
   EXPECT_LT (diameter, 0.45) << json;
   EXPECT_NE (json.find ("\"centre\": ["), std::string::npos);
+}
+
+TEST_F (Command, DetectOnlyWritesTheLoopsThatFillingTakes)
+{
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("d.pcd") + " -detect_only -report " + path ("d.json")), 0)
+      << stderrText ();
+  pcl::PCLPointCloud2 blob;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("d.pcd"), blob), 0);
+  ASSERT_EQ (blob.width * blob.height, cut_.kept.size ());  // nothing filled
+  const int field = pcl::getFieldIndex (blob, "hole_id");
+  ASSERT_GE (field, 0);
+  ASSERT_EQ (blob.fields[field].datatype, pcl::PCLPointField::INT32);
+  std::size_t rim = 0;
+  for (std::size_t i = 0; i < cut_.kept.size (); ++i)
+  {
+    std::int32_t id = 0;
+    std::memcpy (&id, blob.data.data () + i * blob.point_step + blob.fields[field].offset, sizeof (id));
+    ASSERT_TRUE (id == -1 || id == 0) << id;
+    if (id == 0)
+    {
+      ++rim;
+      // The rim lies around the cut ball (radius 0.2 at the corner).
+      EXPECT_LT ((cut_.kept[i].getVector3fMap () - Eigen::Vector3f::Ones ()).norm (), 0.26f);
+    }
+  }
+  EXPECT_GT (rim, 20u);
+  std::ifstream report (path ("d.json"));
+  const std::string json ((std::istreambuf_iterator<char> (report)), {});
+  EXPECT_NE (json.find ("\"hole\": true"), std::string::npos) << json;
+  EXPECT_NE (json.find ("\"indices\": ["), std::string::npos) << json;
+  // The loops file fills as detection does.
+  ASSERT_TRUE (fs::exists (path ("d.pcd.holes.txt")));
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("given.pcd") + " -holes " + path ("d.pcd.holes.txt")), 0)
+      << stderrText ();
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("auto.pcd")), 0);
+  pcl::PointCloud<pcl::PointNormal> given, automatic;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("given.pcd"), given), 0);
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("auto.pcd"), automatic), 0);
+  EXPECT_EQ (given.size (), automatic.size ());
+  EXPECT_GT (given.size (), cut_.kept.size ());
 }

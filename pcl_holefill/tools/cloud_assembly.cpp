@@ -37,23 +37,24 @@ offsetOf (const pcl::PCLPointCloud2 &cloud, const std::string &name)
   return cloud.fields[pcl::getFieldIndex (cloud, name)].offset;
 }
 
-/** One float field named \a name over \a count points. */
+/** One field named \a name of PCL type \a datatype, a value per point. */
+template <typename T>
 pcl::PCLPointCloud2
-floatColumn (const std::string &name, const std::vector<float> &values)
+column (const std::string &name, std::uint8_t datatype, const std::vector<T> &values)
 {
   pcl::PCLPointCloud2 column;
   pcl::PCLPointField field;
   field.name = name;
   field.offset = 0;
-  field.datatype = pcl::PCLPointField::FLOAT32;
+  field.datatype = datatype;
   field.count = 1;
   column.fields.push_back (field);
   column.height = 1;
   column.width = static_cast<std::uint32_t> (values.size ());
-  column.point_step = sizeof (float);
+  column.point_step = sizeof (T);
   column.row_step = column.point_step * column.width;
   column.is_dense = true;
-  column.data.resize (values.size () * sizeof (float));
+  column.data.resize (values.size () * sizeof (T));
   std::memcpy (column.data.data (), values.data (), column.data.size ());
   return column;
 }
@@ -208,9 +209,36 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
     output = rows;
     return true;
   }
-  if (!pcl::concatenateFields (rows, floatColumn ("filled", marks), output))
+  if (!pcl::concatenateFields (rows, column ("filled", pcl::PCLPointField::FLOAT32, marks), output))
   {
     error = "could not add the 'filled' field";
+    return false;
+  }
+  return true;
+}
+
+bool
+assembleDetection (const PreparedCloud &prepared, const std::vector<pcl_holefill::BoundaryLoop> &loops,
+                   pcl::PCLPointCloud2 &output, std::string &error)
+{
+  if (pcl::getFieldIndex (prepared.fields, "hole_id") >= 0)
+  {
+    error = "the input already has a field 'hole_id'";
+    return false;
+  }
+  std::vector<std::int32_t> ids (prepared.fields.width, -1);
+  std::int32_t next = 0;
+  for (const auto &loop : loops)
+  {
+    if (!loop.is_hole)
+      continue;
+    for (const auto i : loop.indices)
+      ids[static_cast<std::size_t> (i)] = next;
+    ++next;
+  }
+  if (!pcl::concatenateFields (prepared.fields, column ("hole_id", pcl::PCLPointField::INT32, ids), output))
+  {
+    error = "could not add the 'hole_id' field";
     return false;
   }
   return true;

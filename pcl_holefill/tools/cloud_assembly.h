@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <pcl_holefill/boundary_loop.h>
+
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -35,5 +37,12 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
 bool
 assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
                 pcl::PCLPointCloud2 &output, std::string &error);
+
+/** \brief The output of -detect_only: the input rows unchanged, with a field
+  * "hole_id" (int32): the hole's number (in the order of \a loops, holes
+  * only) for the points of its rim, -1 for every other point. */
+bool
+assembleDetection (const PreparedCloud &prepared, const std::vector<pcl_holefill::BoundaryLoop> &loops,
+                   pcl::PCLPointCloud2 &output, std::string &error);
 
 }  // namespace pcl_holefill_tool

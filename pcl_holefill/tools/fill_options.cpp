@@ -75,6 +75,10 @@ usage (const char *program)
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
       << "                    the detected holes\n"
       << "  -report FILE      per-hole report as JSON\n"
+      << "  -detect_only      find the holes, fill nothing: the output gets a field hole_id (the\n"
+      << "                    hole's number on its rim points, -1 elsewhere), -report lists every\n"
+      << "                    loop (holes and borders, with their indices), and OUTPUT.holes.txt\n"
+      << "                    holds the hole loops in the format -holes reads (to check or edit)\n"
       << "  -png FILE         a picture: the result from two sides, filled points in orange\n"
       << "  -threads N        0 = all cores                                                  (0)\n"
       << "  -q                quiet: no progress or notes on stderr\n"
@@ -119,6 +123,8 @@ parseOptions (int argc, char **argv, Options &options, std::string &error)
       options.denoise = true;
     else if (arg == "-zero_order")
       options.zero_order = true;
+    else if (arg == "-detect_only")
+      options.detect_only = true;
     else if (arg == "-sigma_n")
     {
       if (!value (text))
@@ -256,6 +262,27 @@ readHoles (const std::string &path, std::size_t cloud_size, std::vector<pcl_hole
   if (holes.empty ())
   {
     error = "the holes file '" + path + "' has no loop";
+    return false;
+  }
+  return true;
+}
+
+bool
+writeHoles (const std::string &path, const std::vector<pcl_holefill::BoundaryLoop> &loops, std::string &error)
+{
+  std::ofstream out (path);
+  out << "# hole loops found by pcl_holefill -detect_only: one per line, input point indices in order\n";
+  for (const auto &loop : loops)
+  {
+    if (!loop.is_hole)
+      continue;
+    for (std::size_t k = 0; k < loop.indices.size (); ++k)
+      out << (k ? " " : "") << loop.indices[k];
+    out << '\n';
+  }
+  if (!out)
+  {
+    error = "cannot write '" + path + "'";
     return false;
   }
   return true;

@@ -40,6 +40,7 @@ struct Options
   std::string holes_file, report_file, png_file, demo_dir;
   int threads = 0;
   bool quiet = false;
+  bool detect_only = false;
   bool help = false;
 };
 
@@ -61,5 +62,9 @@ configure (const Options &options, pcl_holefill::HoleFilling<pcl::PointNormal> &
 bool
 readHoles (const std::string &path, std::size_t cloud_size, std::vector<pcl_holefill::BoundaryLoop> &holes,
            std::string &error);
+
+/** \brief Writes the hole loops (is_hole) in the format readHoles reads. */
+bool
+writeHoles (const std::string &path, const std::vector<pcl_holefill::BoundaryLoop> &loops, std::string &error);
 
 }  // namespace pcl_holefill_tool

@@ -12,10 +12,12 @@
 #include "render.h"
 #include "report_json.h"
 
+#include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -58,13 +60,47 @@ writable (const std::string &path)
   return ::access (folder.c_str (), W_OK | X_OK) == 0;
 }
 
+/** -detect_only: the loops, as a cloud field, a report and a -holes file. */
+int
+detectOnly (const Options &options, const PreparedCloud &prepared)
+{
+  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (prepared.points);
+  estimation.setMinHoleSize (options.min_hole_size);
+  estimation.setMaxHoleDiameter (options.max_hole_size);
+  estimation.setNumberOfThreads (static_cast<unsigned int> (options.threads));
+  std::vector<pcl_holefill::BoundaryLoop> loops;
+  estimation.compute (loops);
+  std::string error;
+  pcl::PCLPointCloud2 output;
+  if (!assembleDetection (prepared, loops, output, error) || !saveCloud (options.output, output, error))
+    return fail (error);
+  const std::string holes_path = options.output + ".holes.txt";
+  if (!writeHoles (holes_path, loops, error))
+    return fail (error);
+  if (!options.report_file.empty ())
+  {
+    std::ofstream report (options.report_file);
+    report << loopsJson (options.input, prepared.points->size (), loops);
+    if (!report)
+      return fail ("cannot write '" + options.report_file + "'");
+  }
+  const auto holes = std::count_if (loops.begin (), loops.end (), [] (const auto &l) { return l.is_hole; });
+  if (!options.quiet)
+    std::fprintf (stderr, "pcl_holefill: %ld holes and %ld borders found; wrote %s and %s\n", static_cast<long> (holes),
+                  static_cast<long> (loops.size ()) - static_cast<long> (holes), options.output.c_str (),
+                  holes_path.c_str ());
+  return 0;
+}
+
 int
 run (const Options &options)
 {
   const auto start = std::chrono::steady_clock::now ();
   if (cloudFormat (options.output).empty ())
     return fail ("unknown file type of '" + options.output + "' (expected .pcd or .ply)");
-  for (const std::string *path : {&options.output, &options.report_file, &options.png_file})
+  const std::string holes_path = options.detect_only ? options.output + ".holes.txt" : std::string ();
+  for (const std::string *path : {&options.output, &options.report_file, &options.png_file, &holes_path})
     if (!path->empty () && !writable (*path))
       return fail ("cannot write '" + *path + "' (no such folder, or no permission)");
   std::string error;
@@ -84,6 +120,9 @@ run (const Options &options)
     else if (prepared.normals_estimated)
       std::fprintf (stderr, "pcl_holefill: note: no normals in the input: estimated (k = 16) and oriented\n");
   }
+
+  if (options.detect_only)
+    return detectOnly (options, prepared);
 
   pcl_holefill::HoleFilling<pcl::PointNormal> filler;
   configure (options, filler);

@@ -53,4 +53,24 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
   return out.str ();
 }
 
+std::string
+loopsJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::BoundaryLoop> &loops)
+{
+  std::ostringstream out;
+  out << "{\n  \"input\": " << quoted (input) << ",\n  \"input_points\": " << input_points << ",\n  \"loops\": [";
+  for (std::size_t i = 0; i < loops.size (); ++i)
+  {
+    const auto &l = loops[i];
+    out << (i ? "," : "") << "\n    {\"hole\": " << (l.is_hole ? "true" : "false")
+        << ", \"closed\": " << (l.closed ? "true" : "false") << ", \"diameter\": " << l.diameter
+        << ", \"length\": " << l.length << ", \"spacing\": " << l.mean_spacing << ", \"pitch\": " << l.pitch
+        << ", \"indices\": [";
+    for (std::size_t k = 0; k < l.indices.size (); ++k)
+      out << (k ? ", " : "") << l.indices[k];
+    out << "]}";
+  }
+  out << (loops.empty () ? "]" : "\n  ]") << "\n}\n";
+  return out.str ();
+}
+
 }  // namespace pcl_holefill_tool

@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_holefill/boundary_loop.h>
 #include <pcl_holefill/hole_report.h>
 
 #include <string>
@@ -14,5 +15,10 @@ namespace pcl_holefill_tool
 /** \brief The per-hole reports as a JSON document. */
 std::string
 reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports);
+
+/** \brief Every loop detection found (holes and borders) as a JSON document:
+  * hole or border, closed, diameter, length, spacing, pitch and the indices. */
+std::string
+loopsJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::BoundaryLoop> &loops);
 
 }  // namespace pcl_holefill_tool

@@ -309,3 +309,17 @@ TEST_F (Command, DetectOnlyWritesTheLoopsThatFillingTakes)
   EXPECT_EQ (given.size (), automatic.size ());
   EXPECT_GT (given.size (), cut_.kept.size ());
 }
+
+TEST_F (Command, AHeaderThatPromisesMoreThanTheFileHoldsIsRefusedFirst)
+{
+  // 600 million vertices announced in a file of a few hundred bytes: refused
+  // from the header and the file's size, before anything is allocated.
+  for (const char *format : {"binary_little_endian", "ascii"})
+  {
+    std::ofstream (path ("big.ply")) << "ply\nformat " << format << " 1.0\nelement vertex 600000000\n"
+                                     << "property float x\nproperty float y\nproperty float z\nend_header\n"
+                                     << std::string (400, '1');
+    EXPECT_EQ (run (path ("big.ply") + " " + path ("o.ply")), 1) << format;
+    EXPECT_NE (stderrText ().find ("shorter than the 600000000 vertices"), std::string::npos) << stderrText ();
+  }
+}

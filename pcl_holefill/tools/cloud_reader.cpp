@@ -502,6 +502,17 @@ parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     cloud.fields.push_back (field);
     point_step += 4;
   }
+  // Every vertex takes at least its scalars' bytes (binary) or a character
+  // and a separator per property (ascii): a header that announces more than
+  // the file can hold is refused before anything is allocated.
+  std::uint64_t least_per_vertex = 0;
+  for (const auto &property : properties)
+    least_per_vertex += ascii ? 2 : pcl::getFieldSize (property.count_type ? property.count_type : property.datatype);
+  if (vertices * least_per_vertex > bytes.size () - body + (ascii ? 1 : 0))
+  {
+    reason = "the file is shorter than the " + std::to_string (vertices) + " vertices its header announces";
+    return false;
+  }
   setShape (cloud, vertices, 1, point_step);
   cloud.data.assign (vertices * point_step, 0);
   std::istringstream text (ascii ? bytes.substr (body) : std::string ());

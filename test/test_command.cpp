@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace fs = std::filesystem;
 namespace shapes = pcl_holefill::shapes;
@@ -151,7 +152,7 @@ TEST_F (Command, BadInputGetsOneLineAndANonZeroExit)
       path ("missing.pcd") + " " + path ("o.pcd"),
       path ("garbage.pcd") + " " + path ("o.pcd"),
       path ("garbage.ply") + " " + path ("o.pcd"),
-      path ("in.pcd") + " " + path ("o.xyz"),
+      path ("in.pcd") + " " + path ("o.obj"),
       path ("in.pcd") + " " + path ("o.pcd") + " -radius -1",
       path ("in.pcd") + " " + path ("o.pcd") + " -sigma_n nan",
       path ("in.pcd") + " " + path ("o.pcd") + " -max_passes -1",
@@ -322,4 +323,75 @@ TEST_F (Command, AHeaderThatPromisesMoreThanTheFileHoldsIsRefusedFirst)
     EXPECT_EQ (run (path ("big.ply") + " " + path ("o.ply")), 1) << format;
     EXPECT_NE (stderrText ().find ("shorter than the 600000000 vertices"), std::string::npos) << stderrText ();
   }
+}
+
+namespace
+{
+/** The rows of a text cloud as numbers. */
+std::vector<std::vector<double>>
+readRows (const std::string &file)
+{
+  std::vector<std::vector<double>> rows;
+  std::ifstream in (file);
+  std::string line;
+  while (std::getline (in, line))
+  {
+    std::istringstream words (line);
+    rows.emplace_back ();
+    for (double v; words >> v;)
+      rows.back ().push_back (v);
+  }
+  return rows;
+}
+}  // namespace
+
+TEST_F (Command, ReadsAndWritesPlainTextClouds)
+{
+  const auto &kept = cut_.kept;
+  // x y z nx ny nz with a comment and a point count (.pts style), tabs and commas.
+  {
+    std::ofstream xyz (path ("in.xyz"));
+    xyz << "# exported by a scanner\n" << kept.size () << "\n";
+    xyz.precision (9);
+    for (const auto &p : kept)
+      xyz << p.x << '\t' << p.y << ',' << p.z << ' ' << p.normal_x << ' ' << p.normal_y << ' ' << p.normal_z << '\n';
+  }
+  ASSERT_EQ (run (path ("in.xyz") + " " + path ("out.xyz")), 0) << stderrText ();
+  EXPECT_EQ (stderrText ().find ("estimated"), std::string::npos) << "the normals were not recognised";
+  auto rows = readRows (path ("out.xyz"));
+  ASSERT_GT (rows.size (), kept.size ());
+  for (std::size_t i = 0; i < kept.size (); ++i)
+  {
+    ASSERT_EQ (rows[i].size (), 7u);  // x y z nx ny nz filled
+    ASSERT_EQ (static_cast<float> (rows[i][0]), kept[i].x);
+    ASSERT_EQ (static_cast<float> (rows[i][5]), kept[i].normal_z);
+    ASSERT_EQ (rows[i][6], 0.0);
+  }
+  for (std::size_t i = kept.size (); i < rows.size (); ++i)
+  {
+    EXPECT_LT (shapes::cube ().distance (Eigen::Vector3d (rows[i][0], rows[i][1], rows[i][2])), 0.0046);
+    EXPECT_EQ (rows[i][6], 1.0);
+  }
+
+  // x y z intensity, no normals: estimated; the intensity is carried to the fill.
+  {
+    std::ofstream txt (path ("in.txt"));
+    txt.precision (9);
+    for (const auto &p : kept)
+      txt << p.x << ' ' << p.y << ' ' << p.z << ' ' << 42 << '\n';
+  }
+  ASSERT_EQ (run (path ("in.txt") + " " + path ("out.txt")), 0) << stderrText ();
+  EXPECT_NE (stderrText ().find ("estimated"), std::string::npos);
+  rows = readRows (path ("out.txt"));
+  ASSERT_GT (rows.size (), kept.size ());
+  for (const auto &row : rows)
+  {
+    ASSERT_EQ (row.size (), 9u);  // x y z nx ny nz intensity, curvature (of the estimate), filled
+    EXPECT_EQ (row[6], 42.0);
+  }
+
+  // A malformed line: one line naming it, exit 1.
+  std::ofstream (path ("bad.xyz")) << "0 0 0\n1 0 0\n0 1 oops\n";
+  EXPECT_EQ (run (path ("bad.xyz") + " " + path ("o.xyz")), 1);
+  EXPECT_NE (stderrText ().find ("line 3"), std::string::npos) << stderrText ();
 }

@@ -5,6 +5,7 @@
 #include "cloud_file.h"
 
 #include "cloud_reader.h"
+#include "text_cloud.h"
 
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -14,6 +15,11 @@
 
 namespace pcl_holefill_tool
 {
+namespace
+{
+const std::string kFormats = ".pcd, .ply, .xyz, .pts or .txt";
+}  // namespace
+
 std::string
 cloudFormat (const std::string &path)
 {
@@ -22,6 +28,8 @@ cloudFormat (const std::string &path)
     return "";
   std::string ext = path.substr (dot + 1);
   std::transform (ext.begin (), ext.end (), ext.begin (), [] (unsigned char c) { return std::tolower (c); });
+  if (ext == "xyz" || ext == "pts" || ext == "txt")
+    return "text";
   return ext == "pcd" || ext == "ply" ? ext : "";
 }
 
@@ -31,11 +39,13 @@ loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &err
   const std::string format = cloudFormat (path);
   if (format.empty ())
   {
-    error = "unknown file type of '" + path + "' (expected .pcd or .ply)";
+    error = "unknown file type of '" + path + "' (expected " + kFormats + ")";
     return false;
   }
   try
   {
+    if (format == "text")
+      return readText (path, cloud, error);
     return format == "pcd" ? readPcd (path, cloud, error) : readPly (path, cloud, error);
   }
   catch (const std::exception &e)  // allocation failures on absurd sizes
@@ -54,9 +64,11 @@ saveCloud (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::strin
     status = pcl::io::savePCDFile (path, cloud, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), true);
   else if (format == "ply")
     status = pcl::io::savePLYFile (path, cloud, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), true);
+  else if (format == "text")
+    return writeText (path, cloud, error);
   else
   {
-    error = "unknown file type of '" + path + "' (expected .pcd or .ply)";
+    error = "unknown file type of '" + path + "' (expected " + kFormats + ")";
     return false;
   }
   if (status < 0)

@@ -10,7 +10,7 @@
 
 namespace pcl_holefill_tool
 {
-/** \brief "pcd" or "ply" from a file name (case-insensitive), or "" for anything else. */
+/** \brief "pcd", "ply" or "text" (.xyz, .pts, .txt) from a file name (case-insensitive), or "" for anything else. */
 std::string
 cloudFormat (const std::string &path);
 

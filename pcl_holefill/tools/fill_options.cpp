@@ -48,11 +48,13 @@ usage (const char *program)
     return text.str ();
   };
   std::ostringstream out;
-  out << "Usage: " << program << " input.{pcd,ply} output.{pcd,ply} [options]\n"
+  out << "Usage: " << program << " input.{pcd,ply,xyz,pts,txt} output.{pcd,ply,xyz,pts,txt} [options]\n"
       << "       " << program << " -demo DIR\n\n"
       << "Fills the holes of an oriented point cloud (Shape controllable geometry completion).\n"
       << "Input points are written unchanged, then the filled points, which have the field\n"
       << "'filled' = 1 (0 for input points) and the other fields of their nearest input point.\n"
+      << "Text clouds (.xyz, .pts, .txt): x y z per line, then normals and other columns if\n"
+      << "any (space, tab or comma separated; '#' comments and a point-count line skipped).\n"
       << "A cloud without normals gets them estimated (k = 16) and oriented. Lengths are in the\n"
       << "cloud's units; 0 means derived from the nearest-neighbour spacing h or the sampling\n"
       << "pitch p (sqrt(area per point)) around each hole.\n\n"

@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -72,27 +73,32 @@ main (int argc, char **argv)
   };
   std::printf ("%s sampling\n\n", sampling.c_str ());
   std::printf ("| input points | cut samples | points added | closed | holefill 1 thread (s) | holefill 2 threads (s) "
-               "| NormalEstimationOMP (s) | ratio (2 threads) | added / s |\n");
-  std::printf ("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+               "| 1 / 2 threads | identical | NormalEstimationOMP (s) | ratio (2 threads) | added / s |\n");
+  std::printf ("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const std::size_t n : sizes)
   {
     const auto cut = pcl_holefill::shapes::cutHoles (sample (n), {{Eigen::Vector3d (0.5, 0.5, 1.0), 0.3}});
     const Cloud::Ptr kept (new Cloud (cut.kept));
     double t[2] = {0.0, 0.0};
-    Cloud output;
+    Cloud outputs[2];
     bool closed = false;
     for (const unsigned threads : {1u, 2u})
     {
       pcl_holefill::HoleFilling<pcl::PointNormal> filler;
       filler.setInputCloud (kept);
       filler.setNumberOfThreads (threads);
-      t[threads - 1] = seconds ([&] { filler.filter (output); });
+      t[threads - 1] = seconds ([&] { filler.filter (outputs[threads - 1]); });
       closed = filler.getReports ().size () == 1 && filler.getReports ()[0].closed;
     }
+    const Cloud &output = outputs[1];
+    const bool identical = outputs[0].size () == outputs[1].size () &&
+                           std::memcmp (outputs[0].data (), outputs[1].data (),
+                                        outputs[0].size () * sizeof (pcl::PointNormal)) == 0;
     const double ne = normalEstimationSeconds (*kept);
     const std::size_t added = output.size () - kept->size ();
-    std::printf ("| %zu | %zu | %zu | %s | %.2f | %.2f | %.2f | %.2f | %.0f |\n", kept->size (), cut.removed.size (),
-                 added, closed ? "yes" : "no", t[0], t[1], ne, t[1] / ne, added / t[1]);
+    std::printf ("| %zu | %zu | %zu | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f | %.0f |\n", kept->size (),
+                 cut.removed.size (), added, closed ? "yes" : "no", t[0], t[1], t[0] / t[1], identical ? "yes" : "NO",
+                 ne, t[1] / ne, added / t[1]);
     std::fflush (stdout);
   }
   return 0;

@@ -179,6 +179,22 @@ TEST (HoleFilling, SameInputSameOutputWithOneOrManyThreads)
   }
 }
 
+TEST (HoleFilling, ASingleHoleUsesTheThreadsAndGivesTheSameOutput)
+{
+  // One hole: its candidates are placed side by side within each pass.
+  const shapes::Shape sphere = shapes::sphere ();
+  Cloud outputs[2];
+  for (int run = 0; run < 2; ++run)
+  {
+    const auto o = fill (sphere, 20000, {{{0.5, 0.5, 1.0}, 0.3}}, [run] (auto &f) { f.setNumberOfThreads (run + 1); });
+    ASSERT_EQ (o.reports.size (), 1u);
+    EXPECT_TRUE (o.reports[0].closed);
+    outputs[run] = o.output;
+  }
+  ASSERT_EQ (outputs[1].size (), outputs[0].size ());
+  EXPECT_EQ (std::memcmp (outputs[1].data (), outputs[0].data (), sizeof (pcl::PointNormal) * outputs[0].size ()), 0);
+}
+
 TEST (HoleFilling, GivenLoopsAndAnInjectedSearchWork)
 {
   const auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}, {{0, 0, 0}, 0.2}});

@@ -128,6 +128,14 @@ public:
     bound_radius_ = radius;
   }
 
+  /** \brief Threads for the candidates of one pass (>= 1, default 1). The
+    * candidates are placed side by side and kept in order: the result is the
+    * same for any number. */
+  void
+  setNumberOfThreads (int threads) { threads_ = std::max (1, threads); }
+  int
+  getNumberOfThreads () const { return threads_; }
+
   /** \brief One pass: \a former is B', \a next receives B. False (PCL_ERROR) on bad setup. */
   bool
   contract (const Front &former, Front &next, ContractionStats &stats);
@@ -175,6 +183,7 @@ private:
   float equilibrium_distance_ = 0.f;
   float tolerance_ = 0.f;
   float constraint_radius_ = 0.f;
+  int threads_ = 1;
   bool combination_constraint_ = true;
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
   float bound_radius_ = 0.f;

@@ -189,12 +189,14 @@ private:
     typename VoxelHashSearch<PointT>::Ptr search;  //!< over cloud, extended pass by pass
     std::size_t input_points = 0;                  //!< how many of cloud are input points
     pcl::Indices rim;                              //!< the rim, as indices into cloud
+    int threads = 1;                               //!< for the work within this hole
   };
 
-  /** Fills one hole of \a working (Algorithm 1 for one loop); the new points go to \a filled. */
+  /** Fills one hole of \a working (Algorithm 1 for one loop) with \a threads;
+    * the new points go to \a filled. */
   void
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
-            PointCloud &filled, HoleReport &report) const;
+            PointCloud &filled, HoleReport &report, int threads) const;
 
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool

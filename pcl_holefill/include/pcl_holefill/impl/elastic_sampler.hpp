@@ -85,11 +85,13 @@ ElasticSampler<PointT>::optimisePosition (Eigen::Vector3f &position, const Eigen
 template <typename PointT> int
 ElasticSampler<PointT>::curvatureSign (int index) const
 {
-  if (static_cast<std::size_t> (index) >= curvature_signs_.size ())
-    curvature_signs_.resize (input_->size (), 2);
-  signed char &sign = curvature_signs_[index];
-  if (sign != 2)
-    return sign;
+  // Filled before each pass for every point there is; threads of one pass
+  // may compute the same sign at once and store the same value (atomic
+  // accesses keep that well defined).
+  signed char *cached = &curvature_signs_[index];
+  const signed char known = __atomic_load_n (cached, __ATOMIC_RELAXED);
+  if (known != 2)
+    return known;
   const PointT &q = (*input_)[index];
   const Eigen::Vector3f centre = q.getVector3fMap ();
   const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
@@ -104,7 +106,8 @@ ElasticSampler<PointT>::curvatureSign (int index) const
     total += w;
   }
   const float mean = total > 0.f ? offset / total : 0.f;
-  sign = mean < -tolerance_ ? 1 : (mean > tolerance_ ? -1 : 0);
+  const signed char sign = mean < -tolerance_ ? 1 : (mean > tolerance_ ? -1 : 0);
+  __atomic_store_n (cached, sign, __ATOMIC_RELAXED);
   return sign;
 }
 
@@ -194,7 +197,6 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
   };
 
   int base = 0;  // id in former_grid of the chain's first vertex
-  Neighbourhood neighbours;
   for (const auto &chain : former)
   {
     const int m = static_cast<int> (chain.vertices.size ());
@@ -204,9 +206,11 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       base += m;
       continue;
     }
-    // 1. Contracting directions n x t, one inward sign for the whole chain.
+    // 1. Contracting directions n x t, one inward sign for the whole chain
+    // (a sum of +-1 votes: the same for any number of threads).
     std::vector<Eigen::Vector3f> directions (m);
-    float vote = 0.f;
+    int vote = 0;
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(+ : vote)
     for (int i = 0; i < m; ++i)
     {
       const FrontVertex &v = chain.vertices[i];
@@ -215,40 +219,47 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
         directions[i].normalize ();
       else
         directions[i].setZero ();
-      propagation_.gatherNeighbourhood (v.position, neighbours);
-      if (neighbours.size () == 0)
+      Neighbourhood around;
+      propagation_.gatherNeighbourhood (v.position, around);
+      if (around.size () == 0)
         continue;
       Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
-      for (const auto &p : neighbours.positions)
+      for (const auto &p : around.positions)
         mean += p;
-      mean /= static_cast<float> (neighbours.size ());
+      mean /= static_cast<float> (around.size ());
       const float side = directions[i].dot (v.position - mean);
-      vote += side > 0.f ? 1.f : (side < 0.f ? -1.f : 0.f);
+      vote += side > 0.f ? 1 : (side < 0.f ? -1 : 0);
     }
-    if (vote < 0.f)
+    if (vote < 0)
       for (auto &d : directions)
         d = -d;
 
-    // 2-3. Control points at the equilibrium distance, optimised and checked.
-    std::vector<FrontVertex> controls;
+    // 2-3. Control points at the equilibrium distance, optimised and checked
+    // (each on its own, so side by side; kept in chain order).
+    std::vector<FrontVertex> candidates (m);
+    std::vector<Verdict> verdicts (m, Verdict::kUnsupported);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
     for (int i = 0; i < m; ++i)
     {
       if (directions[i].isZero ())
-      {
-        ++stats.unsupported;
         continue;
-      }
-      FrontVertex c{chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
-      Verdict verdict = place (c.position, chain.vertices[i].normal, c.normal);
-      if (verdict == Verdict::kKept)
+      FrontVertex &c = candidates[i];
+      c = {chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
+      verdicts[i] = place (c.position, chain.vertices[i].normal, c.normal);
+      if (verdicts[i] == Verdict::kKept)
       {
-        former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, near);
-        if (std::any_of (near.begin (), near.end (), [&] (const auto &q) { return q.id != base + i; }))
-          verdict = Verdict::kRepelled;
+        std::vector<PointGrid::Neighbour> close;
+        former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, close);
+        if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
+          verdicts[i] = Verdict::kRepelled;
       }
-      count (verdict);
-      if (verdict == Verdict::kKept)
-        controls.push_back (c);
+    }
+    std::vector<FrontVertex> controls;
+    for (int i = 0; i < m; ++i)
+    {
+      count (verdicts[i]);
+      if (verdicts[i] == Verdict::kKept)
+        controls.push_back (candidates[i]);
     }
     base += m;
     stats.kept_control_points += controls.size ();
@@ -290,21 +301,38 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       if (!closed_run && length - stations.back () > 0.5f * d_eq)
         stations.push_back (length);
 
-      FrontChain out;
-      bool broken = false;
+      // The samples' places on C, each optimised on its own (side by side) ...
+      std::vector<FrontVertex> samples (stations.size ());
+      std::vector<Eigen::Vector3f> fallback (stations.size ());
       std::size_t segment = 0;
-      for (const float s : stations)
+      for (std::size_t k = 0; k < stations.size (); ++k)
       {
-        while (segment + 1 < segments && arc[segment + 1] < s)
+        while (segment + 1 < segments && arc[segment + 1] < stations[k])
           ++segment;
         const FrontVertex &a = run[segment % run.size ()];
         const FrontVertex &b = run[(segment + 1) % run.size ()];
         const float span = arc[segment + 1] - arc[segment];
-        const float t = segments == 0 || span <= 0.f ? 0.f : std::clamp ((s - arc[segment]) / span, 0.f, 1.f);
-        FrontVertex sample{(1.f - t) * a.position + t * b.position, Eigen::Vector3f::Zero ()};
-        former_grid.nearestK (sample.position, 1, near);
-        const Eigen::Vector3f reference = near.empty () ? a.normal : former_vertices[near[0].id]->normal;
-        Verdict verdict = place (sample.position, reference, sample.normal);
+        const float t =
+            segments == 0 || span <= 0.f ? 0.f : std::clamp ((stations[k] - arc[segment]) / span, 0.f, 1.f);
+        samples[k] = {(1.f - t) * a.position + t * b.position, Eigen::Vector3f::Zero ()};
+        fallback[k] = a.normal;
+      }
+      std::vector<Verdict> placed (stations.size ());
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
+      for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (samples.size ()); ++k)
+      {
+        std::vector<PointGrid::Neighbour> nearest;
+        former_grid.nearestK (samples[k].position, 1, nearest);
+        const Eigen::Vector3f reference = nearest.empty () ? fallback[k] : former_vertices[nearest[0].id]->normal;
+        placed[k] = place (samples[k].position, reference, samples[k].normal);
+      }
+      // ... then kept in order along C.
+      FrontChain out;
+      bool broken = false;
+      for (std::size_t k = 0; k < samples.size (); ++k)
+      {
+        FrontVertex &sample = samples[k];
+        Verdict verdict = placed[k];
         if (verdict == Verdict::kKept)
         {
           sample_grid.withinRadius (sample.position, detail::kDuplicateReach * d_eq, near);

@@ -262,10 +262,14 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
 
   std::vector<PointCloud> fills (holes.size ());
   reports_.assign (holes.size (), HoleReport ());
-#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 1)
+  // Holes side by side; a single hole gets the threads itself (its
+  // candidates are placed side by side within each pass).
+  const int threads = static_cast<int> (resolveThreadCount (threads_));
+  const int per_hole = holes.size () == 1 ? threads : 1;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (holes.size () > 1)
   for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
   {
-    fillHole (*working, *search, holes[h], fills[h], reports_[h]);
+    fillHole (*working, *search, holes[h], fills[h], reports_[h], per_hole);
     reports_[h].points_added = fills[h].size ();
     if (progress_)
     {
@@ -497,8 +501,6 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
   // sampled like every later one (the input rim is jagged, hence longer).
   float first_length = 0.f;
   float pass_radius = scale.radius;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
   Front next;
   report.termination = Termination::kPassLimit;
   for (int pass = 0; pass < pass_budget && report.passes < static_cast<unsigned> (scale.max_passes); ++pass)
@@ -520,17 +522,23 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
                stats.repelled, stats.too_close, stats.rejected_by_constraint, stats.unsupported,
                stats.outside_bound, stats.samples);
     // B joins the surface: other fields from the nearest known point.
+    std::vector<FrontVertex> joining;
     for (const auto &chain : next)
-      for (const auto &v : chain.vertices)
-      {
-        PointT query;
-        query.getVector3fMap () = v.position;
-        surroundings.search->nearestKSearch (query, 1, found, sqr_distances);
-        PointT p = found.empty () ? query : (*surroundings.cloud)[found[0]];
-        p.getVector3fMap () = v.position;
-        p.getNormalVector3fMap () = v.normal;
-        surroundings.cloud->push_back (p);
-      }
+      joining.insert (joining.end (), chain.vertices.begin (), chain.vertices.end ());
+    std::vector<PointT, Eigen::aligned_allocator<PointT>> joined (joining.size ());
+#pragma omp parallel for num_threads(surroundings.threads) schedule(dynamic, 64)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (joining.size ()); ++k)
+    {
+      PointT query;
+      query.getVector3fMap () = joining[k].position;
+      pcl::Indices nearest;
+      std::vector<float> nearest_sqr;
+      surroundings.search->nearestKSearch (query, 1, nearest, nearest_sqr);
+      joined[k] = nearest.empty () ? query : (*surroundings.cloud)[nearest[0]];
+      joined[k].getVector3fMap () = joining[k].position;
+      joined[k].getNormalVector3fMap () = joining[k].normal;
+    }
+    surroundings.cloud->insert (surroundings.cloud->end (), joined.begin (), joined.end ());
     surroundings.search->indexNewPoints ();
     if (pass == 0)
       first_length = frontLength (next);
@@ -566,17 +574,19 @@ HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front
   }
   // Where an empty disc of kOpenDiscInSpacings d_eq touches them, the fronts have not met.
   const float diameter = detail::kOpenDiscInSpacings * scale.d_eq;
+  std::vector<char> is_open (tested.size (), 0);
+  std::vector<Eigen::Vector3f> gap_of (tested.size ());
+#pragma omp parallel for num_threads(surroundings.threads) schedule(dynamic, 64)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (tested.size ()); ++i)
+    is_open[i] = emptyDiscAt (surroundings, tested[i], diameter, gap_of[i]) ? 1 : 0;
   std::vector<Eigen::Vector3f> open, open_normals, open_gaps;
-  for (const auto &v : tested)
-  {
-    Eigen::Vector3f gap_direction;
-    if (emptyDiscAt (surroundings, v, diameter, gap_direction))
+  for (std::size_t i = 0; i < tested.size (); ++i)
+    if (is_open[i])
     {
-      open.push_back (v.position);
-      open_normals.push_back (v.normal);
-      open_gaps.push_back (gap_direction);
+      open.push_back (tested[i].position);
+      open_normals.push_back (tested[i].normal);
+      open_gaps.push_back (gap_of[i]);
     }
-  }
   // The open points, chained into the loops around each opening. An opening
   // shows on several points spread over more than the disc's radius; a tight
   // group of a few is the apex of a convex corner, whose faces, unfolded into
@@ -689,7 +699,7 @@ HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale
 
 template <typename PointT> void
 HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<PointT> &search,
-                               const BoundaryLoop &loop, PointCloud &filled, HoleReport &report) const
+                               const BoundaryLoop &loop, PointCloud &filled, HoleReport &report, int threads) const
 {
   filled.clear ();
   report.boundary_points = loop.indices.size ();
@@ -717,6 +727,8 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   gatherSurroundings (working, search, rim, scale, surroundings);
   ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
+  sampler.setNumberOfThreads (threads);
+  surroundings.threads = threads;
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).
   Front front (1);

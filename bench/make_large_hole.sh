@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes doc/large_hole.md from bench_large_hole: one large hole (a sphere's
-# polar cap) on Poisson-disk and on uniformly random samplings of 63,000 to
+# polar cap) on an even (jittered lattice) and a uniformly random sampling of 63,000 to
 # 1,000,000 points, beside PCL's NormalEstimationOMP on the same cloud in the
 # same run. Run after ./quickstart.sh (it needs the build).
 set -euo pipefail
@@ -15,7 +15,7 @@ cmake --build build --target bench_large_hole -j "$(nproc)" >/dev/null
   echo "and fill, 2 threads) over PCL NormalEstimationOMP (k = 16, 2 threads) on the same cloud, same"
   echo "run. A cost linear in the hole shows as a steady 'added / s' down a table."
   echo
-  for sampling in poisson random; do
+  for sampling in lattice random; do
     ./build/bench/bench_large_hole "$sampling" 63000 250000 1000000
     echo
   done

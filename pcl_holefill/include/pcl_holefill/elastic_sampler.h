@@ -160,6 +160,45 @@ private:
     kOutsideBound
   };
 
+  /** What one pass shares between its steps. */
+  struct PassState
+  {
+    explicit PassState (float d_eq) : former_grid (d_eq), sample_grid (d_eq) {}
+    PointGrid former_grid;                            //!< B', by id into former_vertices
+    std::vector<const FrontVertex *> former_vertices;
+    PointGrid sample_grid;                            //!< the samples of B so far
+    std::size_t samples = 0;
+  };
+
+  /** Section 4.1, step 1: the contracting direction n x t at each vertex of
+    * \a chain, one inward sign for the chain. */
+  std::vector<Eigen::Vector3f>
+  contractingDirections (const FrontChain &chain) const;
+
+  /** Section 4.1, steps 2-3 (eq. 5-8): the control points that survive;
+    * \a base is the id of the chain's first vertex in the former grid. */
+  std::vector<FrontVertex>
+  controlPoints (const FrontChain &chain, const std::vector<Eigen::Vector3f> &directions, int base,
+                 const PassState &pass, ContractionStats &stats) const;
+
+  /** Section 4.1: the control curve C, as runs of control points; \a wraps
+    * tells that the single run is a closed loop. */
+  std::vector<std::vector<FrontVertex>>
+  controlCurve (const std::vector<FrontVertex> &controls, bool closed_chain, bool &wraps) const;
+
+  /** Section 4.2: points every d_eq of arc length along a run (unplaced),
+    * with the normal of the control point before each. */
+  std::vector<FrontVertex>
+  stationsAlong (const std::vector<FrontVertex> &run, bool closed_run,
+                 std::vector<Eigen::Vector3f> &fallback_normals) const;
+
+  /** Section 4.2: the samples of B along one run of C, appended to \a next. */
+  void
+  sampleAlongCurve (const std::vector<FrontVertex> &run, bool closed_run, PassState &pass, Front &next) const;
+
+  static void
+  count (Verdict verdict, ContractionStats &stats);
+
   /** Optimises a candidate and runs every check but the repulsion. */
   Verdict
   place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal) const;

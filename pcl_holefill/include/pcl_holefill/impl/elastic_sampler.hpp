@@ -153,6 +153,200 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
   return Verdict::kKept;
 }
 
+template <typename PointT> void
+ElasticSampler<PointT>::count (Verdict verdict, ContractionStats &stats)
+{
+  switch (verdict)
+  {
+  case Verdict::kRepelled: ++stats.repelled; break;
+  case Verdict::kTooClose: ++stats.too_close; break;
+  case Verdict::kOvershoot: ++stats.rejected_by_constraint; break;
+  case Verdict::kUnsupported: ++stats.unsupported; break;
+  case Verdict::kOutsideBound: ++stats.outside_bound; break;
+  case Verdict::kKept: break;
+  }
+}
+
+template <typename PointT> std::vector<Eigen::Vector3f>
+ElasticSampler<PointT>::contractingDirections (const FrontChain &chain) const
+{
+  // n x t at every vertex, one inward sign for the whole chain: a vote of
+  // "away from the mean of the existing neighbours" (a sum of +-1 votes:
+  // the same for any number of threads).
+  const int m = static_cast<int> (chain.vertices.size ());
+  std::vector<Eigen::Vector3f> directions (m);
+  int vote = 0;
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(+ : vote)
+  for (int i = 0; i < m; ++i)
+  {
+    const FrontVertex &v = chain.vertices[i];
+    directions[i] = v.normal.cross (detail::chainTangent (chain, i));
+    if (directions[i].norm () > 1e-6f)
+      directions[i].normalize ();
+    else
+      directions[i].setZero ();
+    Neighbourhood around;
+    propagation_.gatherNeighbourhood (v.position, around);
+    if (around.size () == 0)
+      continue;
+    Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
+    for (const auto &p : around.positions)
+      mean += p;
+    mean /= static_cast<float> (around.size ());
+    const float side = directions[i].dot (v.position - mean);
+    vote += side > 0.f ? 1 : (side < 0.f ? -1 : 0);
+  }
+  if (vote < 0)
+    for (auto &d : directions)
+      d = -d;
+  return directions;
+}
+
+template <typename PointT> std::vector<FrontVertex>
+ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vector<Eigen::Vector3f> &directions,
+                                       int base, const PassState &pass, ContractionStats &stats) const
+{
+  // A candidate at d_eq along each direction (eq. 5-6), optimised (eq. 7-8)
+  // and checked; one discarded by the elastic force of another former
+  // boundary point is repelled. Each on its own, so side by side; kept in
+  // chain order.
+  const float d_eq = equilibrium_distance_;
+  const int m = static_cast<int> (chain.vertices.size ());
+  std::vector<FrontVertex> candidates (m);
+  std::vector<Verdict> verdicts (m, Verdict::kUnsupported);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
+  for (int i = 0; i < m; ++i)
+  {
+    if (directions[i].isZero ())
+      continue;
+    FrontVertex &c = candidates[i];
+    c = {chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
+    verdicts[i] = place (c.position, chain.vertices[i].normal, c.normal);
+    if (verdicts[i] == Verdict::kKept)
+    {
+      std::vector<PointGrid::Neighbour> close;
+      pass.former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, close);
+      if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
+        verdicts[i] = Verdict::kRepelled;
+    }
+  }
+  std::vector<FrontVertex> controls;
+  for (int i = 0; i < m; ++i)
+  {
+    count (verdicts[i], stats);
+    if (verdicts[i] == Verdict::kKept)
+      controls.push_back (candidates[i]);
+  }
+  return controls;
+}
+
+template <typename PointT> std::vector<std::vector<FrontVertex>>
+ElasticSampler<PointT>::controlCurve (const std::vector<FrontVertex> &controls, bool closed_chain, bool &wraps) const
+{
+  // The kept control points in order, cut where consecutive ones are far
+  // apart (fronts that met: the paper's Fig. 11).
+  const float d_eq = equilibrium_distance_;
+  std::vector<std::vector<FrontVertex>> runs (1);
+  for (std::size_t k = 0; k < controls.size (); ++k)
+  {
+    if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > detail::kChainBreak * d_eq)
+      runs.emplace_back ();
+    runs.back ().push_back (controls[k]);
+  }
+  wraps = closed_chain && controls.size () > 2 &&
+          (controls.front ().position - controls.back ().position).norm () <= detail::kChainBreak * d_eq;
+  if (wraps && runs.size () > 1)
+  {
+    // The last run continues into the first across the loop's start.
+    runs.back ().insert (runs.back ().end (), runs.front ().begin (), runs.front ().end ());
+    runs.erase (runs.begin ());
+    wraps = false;
+  }
+  return runs;
+}
+
+template <typename PointT> std::vector<FrontVertex>
+ElasticSampler<PointT>::stationsAlong (const std::vector<FrontVertex> &run, bool closed_run,
+                                       std::vector<Eigen::Vector3f> &fallback_normals) const
+{
+  // A station every d_eq of arc length: half a step short of the start of a
+  // closed run, and the end of an open one.
+  const float d_eq = equilibrium_distance_;
+  std::vector<float> arc (run.size () + 1, 0.f);
+  const std::size_t segments = closed_run ? run.size () : run.size () - 1;
+  for (std::size_t k = 0; k < segments; ++k)
+    arc[k + 1] = arc[k] + (run[(k + 1) % run.size ()].position - run[k].position).norm ();
+  const float length = arc[segments];
+  std::vector<float> stations;
+  const float last = closed_run ? length - 0.5f * d_eq : length;
+  for (float s = 0.f; s <= last + 1e-6f && stations.size () <= run.size () * 4 + 4; s += d_eq)
+    stations.push_back (s);
+  if (!closed_run && length - stations.back () > 0.5f * d_eq)
+    stations.push_back (length);
+
+  std::vector<FrontVertex> samples (stations.size ());
+  fallback_normals.assign (stations.size (), Eigen::Vector3f::Zero ());
+  std::size_t segment = 0;
+  for (std::size_t k = 0; k < stations.size (); ++k)
+  {
+    while (segment + 1 < segments && arc[segment + 1] < stations[k])
+      ++segment;
+    const FrontVertex &a = run[segment % run.size ()];
+    const FrontVertex &b = run[(segment + 1) % run.size ()];
+    const float span = arc[segment + 1] - arc[segment];
+    const float t = segments == 0 || span <= 0.f ? 0.f : std::clamp ((stations[k] - arc[segment]) / span, 0.f, 1.f);
+    samples[k] = {(1.f - t) * a.position + t * b.position, Eigen::Vector3f::Zero ()};
+    fallback_normals[k] = a.normal;
+  }
+  return samples;
+}
+
+template <typename PointT> void
+ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, bool closed_run, PassState &pass,
+                                          Front &next) const
+{
+  // Section 4.2: each station's sample optimised on its own (side by side),
+  // reference normal from the nearest former boundary point ...
+  const float d_eq = equilibrium_distance_;
+  std::vector<Eigen::Vector3f> fallback;
+  std::vector<FrontVertex> samples = stationsAlong (run, closed_run, fallback);
+  std::vector<Verdict> placed (samples.size ());
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
+  for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (samples.size ()); ++k)
+  {
+    std::vector<PointGrid::Neighbour> nearest;
+    pass.former_grid.nearestK (samples[k].position, 1, nearest);
+    const Eigen::Vector3f reference = nearest.empty () ? fallback[k] : pass.former_vertices[nearest[0].id]->normal;
+    placed[k] = place (samples[k].position, reference, samples[k].normal);
+  }
+  // ... then kept in order along C, never twice on one spot, the new
+  // boundary cut where a discarded sample leaves a gap.
+  FrontChain out;
+  bool broken = false;
+  std::vector<PointGrid::Neighbour> near;
+  for (std::size_t k = 0; k < samples.size (); ++k)
+  {
+    const FrontVertex &sample = samples[k];
+    if (placed[k] != Verdict::kKept)
+      continue;
+    pass.sample_grid.withinRadius (sample.position, detail::kDuplicateReach * d_eq, near);
+    if (!near.empty ())
+      continue;
+    if (!out.vertices.empty () && (sample.position - out.vertices.back ().position).norm () > detail::kChainBreak * d_eq)
+    {
+      next.push_back (out);
+      out.vertices.clear ();
+      broken = true;
+    }
+    pass.sample_grid.insert (sample.position, static_cast<int> (pass.samples++));
+    out.vertices.push_back (sample);
+  }
+  out.closed = closed_run && !broken && out.vertices.size () > 2 &&
+               (out.vertices.front ().position - out.vertices.back ().position).norm () <= detail::kChainBreak * d_eq;
+  if (!out.vertices.empty ())
+    next.push_back (out);
+}
+
 template <typename PointT> bool
 ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionStats &stats)
 {
@@ -167,36 +361,19 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
                "constraint tolerance = %g (>= 0).\n", equilibrium_distance_, tolerance_);
     return false;
   }
-  const float d_eq = equilibrium_distance_;
   curvature_signs_.resize (input_->size (), 2);
 
-  // Every former boundary point: the sources of the elastic force and of the reference normals.
-  PointGrid former_grid (d_eq);
-  std::vector<const FrontVertex *> former_vertices;
+  // Every former boundary point: the sources of the elastic force and of
+  // the reference normals; and the samples of this pass, so that two pieces
+  // of C never sample the same spot.
+  PassState pass (equilibrium_distance_);
   for (const auto &chain : former)
     for (const auto &v : chain.vertices)
     {
-      former_grid.insert (v.position, static_cast<int> (former_vertices.size ()));
-      former_vertices.push_back (&v);
+      pass.former_grid.insert (v.position, static_cast<int> (pass.former_vertices.size ()));
+      pass.former_vertices.push_back (&v);
     }
-  // The samples of this pass, so that two pieces of C never sample the same spot.
-  PointGrid sample_grid (d_eq);
-  std::size_t sample_count = 0;
-
-  std::vector<PointGrid::Neighbour> near;
-  auto count = [&stats] (Verdict v) {
-    switch (v)
-    {
-    case Verdict::kRepelled: ++stats.repelled; break;
-    case Verdict::kTooClose: ++stats.too_close; break;
-    case Verdict::kOvershoot: ++stats.rejected_by_constraint; break;
-    case Verdict::kUnsupported: ++stats.unsupported; break;
-    case Verdict::kOutsideBound: ++stats.outside_bound; break;
-    case Verdict::kKept: break;
-    }
-  };
-
-  int base = 0;  // id in former_grid of the chain's first vertex
+  int base = 0;  // id in the former grid of the chain's first vertex
   for (const auto &chain : former)
   {
     const int m = static_cast<int> (chain.vertices.size ());
@@ -206,157 +383,16 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       base += m;
       continue;
     }
-    // 1. Contracting directions n x t, one inward sign for the whole chain
-    // (a sum of +-1 votes: the same for any number of threads).
-    std::vector<Eigen::Vector3f> directions (m);
-    int vote = 0;
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(+ : vote)
-    for (int i = 0; i < m; ++i)
-    {
-      const FrontVertex &v = chain.vertices[i];
-      directions[i] = v.normal.cross (detail::chainTangent (chain, i));
-      if (directions[i].norm () > 1e-6f)
-        directions[i].normalize ();
-      else
-        directions[i].setZero ();
-      Neighbourhood around;
-      propagation_.gatherNeighbourhood (v.position, around);
-      if (around.size () == 0)
-        continue;
-      Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
-      for (const auto &p : around.positions)
-        mean += p;
-      mean /= static_cast<float> (around.size ());
-      const float side = directions[i].dot (v.position - mean);
-      vote += side > 0.f ? 1 : (side < 0.f ? -1 : 0);
-    }
-    if (vote < 0)
-      for (auto &d : directions)
-        d = -d;
-
-    // 2-3. Control points at the equilibrium distance, optimised and checked
-    // (each on its own, so side by side; kept in chain order).
-    std::vector<FrontVertex> candidates (m);
-    std::vector<Verdict> verdicts (m, Verdict::kUnsupported);
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
-    for (int i = 0; i < m; ++i)
-    {
-      if (directions[i].isZero ())
-        continue;
-      FrontVertex &c = candidates[i];
-      c = {chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
-      verdicts[i] = place (c.position, chain.vertices[i].normal, c.normal);
-      if (verdicts[i] == Verdict::kKept)
-      {
-        std::vector<PointGrid::Neighbour> close;
-        former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, close);
-        if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
-          verdicts[i] = Verdict::kRepelled;
-      }
-    }
-    std::vector<FrontVertex> controls;
-    for (int i = 0; i < m; ++i)
-    {
-      count (verdicts[i]);
-      if (verdicts[i] == Verdict::kKept)
-        controls.push_back (candidates[i]);
-    }
+    // 1-3. Control points along the contracting directions (sec. 4.1).
+    const std::vector<FrontVertex> controls = controlPoints (chain, contractingDirections (chain), base, pass, stats);
     base += m;
     stats.kept_control_points += controls.size ();
     if (controls.empty ())
       continue;
-
-    // 4. The control curve: kept control points in order, cut where they are far apart.
-    std::vector<std::vector<FrontVertex>> runs (1);
-    for (std::size_t k = 0; k < controls.size (); ++k)
-    {
-      if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > detail::kChainBreak * d_eq)
-        runs.emplace_back ();
-      runs.back ().push_back (controls[k]);
-    }
-    bool wraps = chain.closed && controls.size () > 2 &&
-                 (controls.front ().position - controls.back ().position).norm () <= detail::kChainBreak * d_eq;
-    if (wraps && runs.size () > 1)
-    {
-      // The last run continues into the first across the loop's start.
-      runs.back ().insert (runs.back ().end (), runs.front ().begin (), runs.front ().end ());
-      runs.erase (runs.begin ());
-      wraps = false;
-    }
-
-    // 5. Samples every d_eq along each run.
-    for (const auto &run : runs)
-    {
-      const bool closed_run = wraps;
-      std::vector<float> arc (run.size () + 1, 0.f);
-      const std::size_t segments = closed_run ? run.size () : run.size () - 1;
-      for (std::size_t k = 0; k < segments; ++k)
-        arc[k + 1] = arc[k] + (run[(k + 1) % run.size ()].position - run[k].position).norm ();
-      const float length = arc[segments];
-      // Stop half a step before the start of a closed run, include the end of an open one.
-      std::vector<float> stations;
-      const float last = closed_run ? length - 0.5f * d_eq : length;
-      for (float s = 0.f; s <= last + 1e-6f && stations.size () <= run.size () * 4 + 4; s += d_eq)
-        stations.push_back (s);
-      if (!closed_run && length - stations.back () > 0.5f * d_eq)
-        stations.push_back (length);
-
-      // The samples' places on C, each optimised on its own (side by side) ...
-      std::vector<FrontVertex> samples (stations.size ());
-      std::vector<Eigen::Vector3f> fallback (stations.size ());
-      std::size_t segment = 0;
-      for (std::size_t k = 0; k < stations.size (); ++k)
-      {
-        while (segment + 1 < segments && arc[segment + 1] < stations[k])
-          ++segment;
-        const FrontVertex &a = run[segment % run.size ()];
-        const FrontVertex &b = run[(segment + 1) % run.size ()];
-        const float span = arc[segment + 1] - arc[segment];
-        const float t =
-            segments == 0 || span <= 0.f ? 0.f : std::clamp ((stations[k] - arc[segment]) / span, 0.f, 1.f);
-        samples[k] = {(1.f - t) * a.position + t * b.position, Eigen::Vector3f::Zero ()};
-        fallback[k] = a.normal;
-      }
-      std::vector<Verdict> placed (stations.size ());
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
-      for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (samples.size ()); ++k)
-      {
-        std::vector<PointGrid::Neighbour> nearest;
-        former_grid.nearestK (samples[k].position, 1, nearest);
-        const Eigen::Vector3f reference = nearest.empty () ? fallback[k] : former_vertices[nearest[0].id]->normal;
-        placed[k] = place (samples[k].position, reference, samples[k].normal);
-      }
-      // ... then kept in order along C.
-      FrontChain out;
-      bool broken = false;
-      for (std::size_t k = 0; k < samples.size (); ++k)
-      {
-        FrontVertex &sample = samples[k];
-        Verdict verdict = placed[k];
-        if (verdict == Verdict::kKept)
-        {
-          sample_grid.withinRadius (sample.position, detail::kDuplicateReach * d_eq, near);
-          if (!near.empty ())
-            verdict = Verdict::kTooClose;
-        }
-        if (verdict != Verdict::kKept)
-          continue;
-        if (!out.vertices.empty () &&
-            (sample.position - out.vertices.back ().position).norm () > detail::kChainBreak * d_eq)
-        {
-          next.push_back (out);
-          out.vertices.clear ();
-          broken = true;
-        }
-        sample_grid.insert (sample.position, static_cast<int> (sample_count++));
-        out.vertices.push_back (sample);
-      }
-      out.closed = closed_run && !broken && out.vertices.size () > 2 &&
-                   (out.vertices.front ().position - out.vertices.back ().position).norm () <=
-                       detail::kChainBreak * d_eq;
-      if (!out.vertices.empty ())
-        next.push_back (out);
-    }
+    // 4. The control curve C; 5. the new boundary B sampled along it (sec. 4.2).
+    bool wraps = false;
+    for (const auto &run : controlCurve (controls, chain.closed, wraps))
+      sampleAlongCurve (run, wraps, pass, next);
   }
   stats.samples = frontSize (next);
   return true;

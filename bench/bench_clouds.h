@@ -6,7 +6,12 @@
 
 #include <pcl_holefill/shapes.h>
 
+#include <pcl/features/normal_3d_omp.h>
+#include <pcl/search/kdtree.h>
+
 #include <algorithm>
+#include <chrono>
+#include <functional>
 #include <random>
 
 namespace bench
@@ -34,6 +39,35 @@ inline pcl_holefill::shapes::CutCloud
 sphereWithTenHoles (std::size_t points)
 {
   return pcl_holefill::shapes::cutHoles (pcl_holefill::shapes::sphere ().sample (points), sphereHoles (10, 0.06, 3));
+}
+
+using Cloud = pcl_holefill::shapes::Cloud;
+
+/** Median wall time of \a runs calls. */
+inline double
+seconds (const std::function<void ()> &work, int runs)
+{
+  std::vector<double> times;
+  for (int i = 0; i < runs; ++i)
+  {
+    const auto start = std::chrono::steady_clock::now ();
+    work ();
+    times.push_back (std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
+  }
+  std::sort (times.begin (), times.end ());
+  return times[times.size () / 2];
+}
+
+/** PCL NormalEstimationOMP (k = 16) on \a cloud: the yardstick of every bench table. */
+inline double
+pclNormals (const Cloud::Ptr &cloud, int threads)
+{
+  pcl::NormalEstimationOMP<pcl::PointNormal, pcl::Normal> estimation (threads);
+  estimation.setInputCloud (cloud);
+  estimation.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
+  estimation.setKSearch (16);
+  pcl::PointCloud<pcl::Normal> normals;
+  return seconds ([&] { estimation.compute (normals); }, 1);
 }
 
 }  // namespace bench

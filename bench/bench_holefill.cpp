@@ -26,31 +26,8 @@ using Cloud = shapes::Cloud;
 
 namespace
 {
-/** Median wall time of \a runs calls. */
-double
-seconds (const std::function<void ()> &work, int runs)
-{
-  std::vector<double> times;
-  for (int i = 0; i < runs; ++i)
-  {
-    const auto start = std::chrono::steady_clock::now ();
-    work ();
-    times.push_back (std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
-  }
-  std::sort (times.begin (), times.end ());
-  return times[times.size () / 2];
-}
-
-double
-pclNormals (const Cloud::Ptr &cloud, int threads)
-{
-  pcl::NormalEstimationOMP<pcl::PointNormal, pcl::Normal> estimation (threads);
-  estimation.setInputCloud (cloud);
-  estimation.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
-  estimation.setKSearch (16);
-  pcl::PointCloud<pcl::Normal> normals;
-  return seconds ([&] { estimation.compute (normals); }, 1);
-}
+using bench::pclNormals;
+using bench::seconds;
 
 void
 detectionTable (std::size_t points, int threads)

@@ -11,6 +11,7 @@
  * the same run, the ratio of the two, and points added per second. Cost
  * linear in the hole shows as a constant "added / s" down the table.
  */
+#include "bench_clouds.h"
 #include "corpus.h"
 
 #include <pcl_holefill/hole_filling.h>
@@ -27,32 +28,7 @@
 #include <string>
 #include <vector>
 
-namespace
-{
 using Cloud = pcl_holefill::shapes::Cloud;
-
-template <typename F>
-double
-seconds (F &&f)
-{
-  const auto start = std::chrono::steady_clock::now ();
-  f ();
-  return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-}
-
-double
-normalEstimationSeconds (const Cloud &cloud)
-{
-  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
-  pcl::copyPointCloud (cloud, *xyz);
-  pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation (2);
-  estimation.setInputCloud (xyz);
-  estimation.setSearchMethod (pcl::search::KdTree<pcl::PointXYZ>::Ptr (new pcl::search::KdTree<pcl::PointXYZ>));
-  estimation.setKSearch (16);
-  pcl::PointCloud<pcl::Normal> normals;
-  return seconds ([&] { estimation.compute (normals); });
-}
-}  // namespace
 
 int
 main (int argc, char **argv)
@@ -87,14 +63,14 @@ main (int argc, char **argv)
       pcl_holefill::HoleFilling<pcl::PointNormal> filler;
       filler.setInputCloud (kept);
       filler.setNumberOfThreads (threads);
-      t[threads - 1] = seconds ([&] { filler.filter (outputs[threads - 1]); });
+      t[threads - 1] = bench::seconds ([&] { filler.filter (outputs[threads - 1]); }, 1);
       closed = filler.getReports ().size () == 1 && filler.getReports ()[0].closed;
     }
     const Cloud &output = outputs[1];
     const bool identical = outputs[0].size () == outputs[1].size () &&
                            std::memcmp (outputs[0].data (), outputs[1].data (),
                                         outputs[0].size () * sizeof (pcl::PointNormal)) == 0;
-    const double ne = normalEstimationSeconds (*kept);
+    const double ne = bench::pclNormals (kept, 2);
     const std::size_t added = output.size () - kept->size ();
     std::printf ("| %zu | %zu | %zu | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f | %.0f |\n", kept->size (),
                  cut.removed.size (), added, closed ? "yes" : "no", t[0], t[1], t[0] / t[1], identical ? "yes" : "NO",

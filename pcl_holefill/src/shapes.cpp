@@ -17,16 +17,17 @@ namespace pcl_holefill
 {
 namespace shapes
 {
-namespace
-{
 Eigen::Vector3d
-faceNormal (const Face &f)
+Face::normal () const
 {
   Eigen::Vector3d n = Eigen::Vector3d::Zero ();
-  for (std::size_t i = 0; i < f.corners.size (); ++i)
-    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
+  for (std::size_t i = 0; i < corners.size (); ++i)
+    n += corners[i].cross (corners[(i + 1) % corners.size ()]);
   return n.normalized ();
 }
+
+namespace
+{
 
 double
 faceArea (const Face &f)
@@ -62,7 +63,7 @@ projectsInside (const Face &f, const Eigen::Vector3d &normal, const Eigen::Vecto
 double
 faceDistance (const Face &f, const Eigen::Vector3d &p)
 {
-  const Eigen::Vector3d n = faceNormal (f);
+  const Eigen::Vector3d n = f.normal ();
   const double height = (p - f.corners[0]).dot (n);
   if (projectsInside (f, n, p - height * n))
     return std::abs (height);
@@ -89,7 +90,7 @@ makePoint (const Eigen::Vector3d &p, const Eigen::Vector3d &n)
 void
 sampleFace (const Face &f, double spacing, std::mt19937 &rng, Cloud &out)
 {
-  const Eigen::Vector3d n = faceNormal (f);
+  const Eigen::Vector3d n = f.normal ();
   const Eigen::Vector3d u = (f.corners[1] - f.corners[0]).normalized ();
   const Eigen::Vector3d v = n.cross (u);
   double lo_u = std::numeric_limits<double>::max (), hi_u = -lo_u, lo_v = lo_u, hi_v = -lo_u;
@@ -205,7 +206,7 @@ Shape::sample (std::size_t points, unsigned seed) const
       if (!near.empty ())
         continue;
       kept.insert (p.cast<float> (), static_cast<int> (out.size ()));
-      out.push_back (makePoint (p, faceNormal (faces[f])));
+      out.push_back (makePoint (p, faces[f].normal ()));
     }
   }
   out.width = static_cast<std::uint32_t> (out.size ());

@@ -25,15 +25,6 @@ namespace
 using V = Eigen::Vector3d;
 using pcl_holefill::shapes::Face;
 
-V
-faceNormal (const Face &f)
-{
-  V n = V::Zero ();
-  for (std::size_t i = 0; i < f.corners.size (); ++i)
-    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
-  return n.normalized ();
-}
-
 pcl::PointNormal
 makePoint (const V &p, const V &n)
 {
@@ -53,7 +44,7 @@ public:
     for (const auto &f : shape.faces)
       for (std::size_t k = 1; k + 1 < f.corners.size (); ++k)
       {
-        triangles_.push_back ({f.corners[0], f.corners[k], f.corners[k + 1], faceNormal (f)});
+        triangles_.push_back ({f.corners[0], f.corners[k], f.corners[k + 1], f.normal ()});
         const double a = 0.5 * (f.corners[k] - f.corners[0]).cross (f.corners[k + 1] - f.corners[0]).norm ();
         cumulative_.push_back ((cumulative_.empty () ? 0.0 : cumulative_.back ()) + a);
       }
@@ -108,6 +99,19 @@ finish (Cloud &cloud)
   cloud.is_dense = true;
 }
 
+/** Appends \a p to \a out (and to \a kept, its grid) unless a kept point
+  * lies closer than \a radius: the test of dart throwing. */
+void
+keepIfApart (const pcl::PointNormal &p, float radius, pcl_holefill::PointGrid &kept, Cloud &out)
+{
+  thread_local std::vector<pcl_holefill::PointGrid::Neighbour> near;
+  kept.withinRadius (p.getVector3fMap (), radius, near, 1);
+  if (!near.empty ())
+    return;
+  kept.insert (p.getVector3fMap (), static_cast<int> (out.size ()));
+  out.push_back (p);
+}
+
 /** Dart throwing: keeps a dart when no kept point lies closer than
   * min_distance(dart). Stops after \a darts darts or \a points kept. */
 template <typename MinDistance> Cloud
@@ -115,15 +119,10 @@ poissonDisk (SurfaceDarts &darts, std::size_t points, std::size_t max_darts, flo
 {
   Cloud out;
   pcl_holefill::PointGrid kept (largest);
-  std::vector<pcl_holefill::PointGrid::Neighbour> near;
   for (std::size_t d = 0; d < max_darts && out.size () < points; ++d)
   {
     const pcl::PointNormal p = darts.next ();
-    kept.withinRadius (p.getVector3fMap (), min_distance (p.getVector3fMap ()), near, 1);
-    if (!near.empty ())
-      continue;
-    kept.insert (p.getVector3fMap (), static_cast<int> (out.size ()));
-    out.push_back (p);
+    keepIfApart (p, min_distance (p.getVector3fMap ()), kept, out);
   }
   return out;
 }
@@ -155,15 +154,8 @@ scanLines (const Shape &shape, SurfaceDarts &darts, std::size_t points)
   }
   Cloud out;
   pcl_holefill::PointGrid kept (static_cast<float> (along));
-  std::vector<pcl_holefill::PointGrid::Neighbour> near;
   for (const auto &q : slab)
-  {
-    kept.withinRadius (q.getVector3fMap (), static_cast<float> (0.9 * along), near, 1);
-    if (!near.empty ())
-      continue;
-    kept.insert (q.getVector3fMap (), static_cast<int> (out.size ()));
-    out.push_back (q);
-  }
+    keepIfApart (q, static_cast<float> (0.9 * along), kept, out);
   return out;
 }
 
@@ -190,7 +182,7 @@ void
 addFace (Shape &s, std::vector<V> corners, const V &outward)
 {
   Face f{corners};
-  if (faceNormal (f).dot (outward) < 0.0)
+  if (f.normal ().dot (outward) < 0.0)
     std::reverse (f.corners.begin (), f.corners.end ());
   s.faces.push_back (f);
 }

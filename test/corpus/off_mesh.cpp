@@ -18,15 +18,6 @@ namespace
 using pcl_holefill::shapes::Face;
 using pcl_holefill::shapes::Shape;
 
-Eigen::Vector3d
-normalOf (const Face &f)
-{
-  Eigen::Vector3d n = Eigen::Vector3d::Zero ();
-  for (std::size_t i = 0; i < f.corners.size (); ++i)
-    n += f.corners[i].cross (f.corners[(i + 1) % f.corners.size ()]);
-  return n.normalized ();
-}
-
 /** A key for a position, so that faces sharing a vertex find each other. */
 std::tuple<long, long, long>
 keyOf (const Eigen::Vector3d &p)
@@ -89,7 +80,7 @@ readOffMesh (const std::string &path, Shape &shape, std::string &error)
     }
     std::string rest;
     std::getline (in, rest);  // optional colour
-    if (normalOf (face).allFinite ())
+    if (face.normal ().allFinite ())
       shape.faces.push_back (face);
   }
   return true;
@@ -104,7 +95,7 @@ sharpCorner (const Shape &shape)
   for (const auto &f : shape.faces)
     for (const auto &c : f.corners)
     {
-      normals_at[keyOf (c)].push_back (normalOf (f));
+      normals_at[keyOf (c)].push_back (f.normal ());
       position_of[keyOf (c)] = c;
       centroid += c;
     }
@@ -140,7 +131,7 @@ sharpEdgePoint (const Shape &shape)
       Key a = keyOf (f.corners[i]), b = keyOf (f.corners[(i + 1) % f.corners.size ()]);
       if (b < a)
         std::swap (a, b);
-      faces_of_edge[{a, b}].push_back (normalOf (f));
+      faces_of_edge[{a, b}].push_back (f.normal ());
       midpoint_of[{a, b}] = 0.5 * (f.corners[i] + f.corners[(i + 1) % f.corners.size ()]);
     }
   const Eigen::Vector3d corner = sharpCorner (shape);

@@ -26,6 +26,10 @@ using Cloud = pcl::PointCloud<pcl::PointNormal>;
 struct Face
 {
   std::vector<Eigen::Vector3d> corners;
+
+  /** \brief Unit normal (Newell's sum over the edges); NaN for a degenerate face. */
+  Eigen::Vector3d
+  normal () const;
 };
 
 /** \brief A surface made of planar faces, or a sphere when radius > 0. */

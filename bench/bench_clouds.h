@@ -4,7 +4,7 @@
  */
 #pragma once
 
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/features/normal_3d_omp.h>
 #include <pcl/search/kdtree.h>

@@ -9,7 +9,7 @@
 
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/features/boundary.h>
 #include <pcl/features/normal_3d_omp.h>

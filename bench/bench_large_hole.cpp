@@ -15,7 +15,7 @@
 #include "corpus.h"
 
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/console/print.h>
 #include <pcl/features/normal_3d_omp.h>

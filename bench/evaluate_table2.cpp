@@ -16,7 +16,7 @@
 
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/point_grid.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/PolygonMesh.h>
 #include <pcl/conversions.h>

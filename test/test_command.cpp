@@ -4,7 +4,7 @@
  *
  * The pcl_holefill command, run as a user would run it.
  */
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
@@ -92,6 +92,21 @@ TEST_F (Command, FillsAPcdKeepingEveryInputPointAndMarkingTheFill)
   std::ifstream report (path ("r.json"));
   const std::string json ((std::istreambuf_iterator<char> (report)), {});
   EXPECT_NE (json.find ("\"closed\": true"), std::string::npos) << json;
+  EXPECT_NE (json.find ("\"sigma_n\": 0.1}"), std::string::npos) << json;  // chosen: a clean, sharp rim
+}
+
+TEST_F (Command, SigmaNTakesAutoANumberOrSupAndTheReportTellsWhich)
+{
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);
+  for (const auto &[value, reported] : std::vector<std::pair<std::string, std::string>>{
+           {"auto", "0.1}"}, {"0", "0.1}"}, {"0.25", "0.25}"}, {"sup", "\"sup\"}"}})
+  {
+    ASSERT_EQ (run (path ("in.pcd") + " " + path ("out.pcd") + " -sigma_n " + value + " -report " + path ("s.json")), 0)
+        << stderrText ();
+    std::ifstream report (path ("s.json"));
+    const std::string json ((std::istreambuf_iterator<char> (report)), {});
+    EXPECT_NE (json.find ("\"sigma_n\": " + reported), std::string::npos) << value << ": " << json;
+  }
 }
 
 TEST_F (Command, EstimatesNormalsForAPlyWithoutThem)

@@ -5,7 +5,7 @@
 #include <pcl_holefill/bilateral_preprocessor.h>
 #include <pcl_holefill/elastic_sampler.h>
 #include <pcl_holefill/normal_propagation.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <gtest/gtest.h>

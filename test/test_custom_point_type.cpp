@@ -8,7 +8,7 @@
 #define PCL_NO_PRECOMPILE
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/common/io.h>
 

@@ -5,7 +5,7 @@
 #include "hole_cases.h"
 
 #include <pcl_holefill/hole_boundary_estimation.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/search/kdtree.h>
 

@@ -6,7 +6,7 @@
 
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/common/io.h>
 #include <pcl/search/kdtree.h>
@@ -245,7 +245,7 @@ TEST (HoleFilling, InvalidParametersLeaveTheOutputEmpty)
   const float nan = std::numeric_limits<float>::quiet_NaN ();
   const std::vector<std::function<void (HoleFilling<pcl::PointNormal> &)>> bad{
       [] (auto &f) { f.setRadius (-1.f); },           [nan] (auto &f) { f.setRadius (nan); },
-      [] (auto &f) { f.setSigmaN (0.f); },            [nan] (auto &f) { f.setSigmaN (nan); },
+      [] (auto &f) { f.setSigmaN (-0.1f); },          [nan] (auto &f) { f.setSigmaN (nan); },
       [] (auto &f) { f.setSigmaR (-0.1f); },          [] (auto &f) { f.setRadiusShrinkFactor (0.5f); },
       [] (auto &f) { f.setTerminationRatio (1.5f); }, [] (auto &f) { f.setMaxPasses (-1); },
       [nan] (auto &f) { f.setSigmaD (nan); },         [] (auto &f) { f.setSpacingFactor (0.f); },

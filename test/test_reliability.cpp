@@ -10,7 +10,7 @@
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/normal_propagation.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <gtest/gtest.h>
@@ -229,7 +229,7 @@ TEST (BadParameters, EveryClassRefusesNegativeZeroAndNan)
     {
       const Cloud filled = filterWith (*cloud, [&] (auto &f) {
         if (which == 0)
-          f.setSigmaN (bad);
+          f.setSigmaN (std::isnan (bad) ? bad : bad - 1.f);  // 0 is automatic
         if (which == 1)
           f.setMaxPasses (static_cast<int> (std::isnan (bad) ? -5 : bad - 1.f));  // 0 is automatic
         if (which == 2)

@@ -2,7 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include "render.h"
 
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <pcl/common/io.h>
 #include <pcl/io/ply_io.h>

@@ -60,8 +60,9 @@ usage (const char *program)
       << "pitch p (sqrt(area per point)) around each hole.\n\n"
       << "Options (default):\n"
       << "  -radius R         neighbourhood r of eq. (1),(7); 0 = max(4h, 3.5p, 2.5 d_eq)     " << def (d.getRadius ())
-      << "  -sigma_n S|sup    normal dissimilarity std (no unit); small = sharp edges,\n"
-      << "                    'sup' = off, round patches                                   " << def (d.getSigmaN ())
+      << "  -sigma_n S|auto|sup normal dissimilarity std (no unit); small = sharp edges,\n"
+      << "                    'sup' = off, round patches; auto (0) = per hole, 2 x the\n"
+      << "                    spread of the rim's normals, within 0.1..0.3                " << def (d.getSigmaN ())
       << "  -sigma_r S        elastic force width; spacing of new points d_eq = S^2 ln(1e4);\n"
       << "                    0 = d_eq from -spacing                                         " << def (d.getSigmaR ())
       << "  -spacing F        d_eq = F x p when sigma_r is 0 (0.25..10)                       " << def (d.getSpacingFactor ())
@@ -133,9 +134,11 @@ parseOptions (int argc, char **argv, Options &options, std::string &error)
         return false;
       if (text == "sup" || text == "Sup" || text == "inf")
         options.sigma_n = pcl_holefill::kSup;
-      else if (!toFloat (text, options.sigma_n) || !(options.sigma_n > 0.f))
+      else if (text == "auto")
+        options.sigma_n = 0.f;
+      else if (!toFloat (text, options.sigma_n) || !(options.sigma_n >= 0.f))
       {
-        error = "-sigma_n takes a number > 0 or 'sup', not '" + text + "'";
+        error = "-sigma_n takes a number >= 0, 'auto' (= 0) or 'sup', not '" + text + "'";
         return false;
       }
     }

@@ -4,6 +4,7 @@
  */
 #include "report_json.h"
 
+#include <cmath>
 #include <sstream>
 
 namespace pcl_holefill_tool
@@ -47,7 +48,11 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"outside_bound\": " << r.outside_bound << ", \"centre\": [" << r.centre.x () << ", "
         << r.centre.y () << ", " << r.centre.z () << "], \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
-        << ", \"first_order\": " << (r.first_order ? "true" : "false") << "}";
+        << ", \"first_order\": " << (r.first_order ? "true" : "false") << ", \"sigma_n\": ";
+    if (std::isinf (r.sigma_n))
+      out << "\"sup\"}";  // JSON has no infinity
+    else
+      out << r.sigma_n << "}";
   }
   out << (reports.empty () ? "]" : "\n  ]") << "\n}\n";
   return out.str ();

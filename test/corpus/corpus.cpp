@@ -608,6 +608,8 @@ runCase (const Case &c)
   o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
   for (const auto &r : filler.getReports ())
   {
+    o.min_sigma_n = o.reported ? std::min (o.min_sigma_n, r.sigma_n) : r.sigma_n;
+    o.max_sigma_n = std::max (o.max_sigma_n, r.sigma_n);
     ++o.reported;
     o.closed += r.closed ? 1 : 0;
     o.resumed += r.resumed > 0 ? 1 : 0;

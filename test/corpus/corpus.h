@@ -4,7 +4,7 @@
  */
 #pragma once
 
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <string>
 #include <vector>
@@ -140,6 +140,8 @@ struct Outcome
   double density = 0.0;
   /** Mean nearest-neighbour distance of the filled points over the kept points' near the holes. */
   double spacing_ratio = 0.0;
+  /** Smallest and largest sigma_n the holes were filled with (chosen per hole by default). */
+  float min_sigma_n = 0.f, max_sigma_n = 0.f;
   double seconds = 0.0;                  //!< HoleFilling::filter alone
 };
 

@@ -91,6 +91,7 @@ def test_cube_corner_is_filled_sharp_and_the_input_is_untouched(corner):
     assert np.array_equal(res.normals[:n], kept_normals)
     assert not res.filled[:n].any() and res.filled[n:].all()
     assert len(res.reports) == 1 and res.reports[0]["closed"]
+    assert res.reports[0]["sigma_n"] == pytest.approx(0.1)  # automatic: a clean, sharp rim
     fill = res.points[res.filled]
     p = pitch(6.0)
     # Every removed sample within 1.5 pitches of an output point.
@@ -186,7 +187,7 @@ def test_nan_rows_are_kept_and_skipped(corner):
     (lambda p, n: pcl_holefill.fill(np.full((10, 3), np.nan)), ValueError, "no finite row"),
     (lambda p, n: pcl_holefill.fill(p, n[:-1]), ValueError, "shape of points"),
     (lambda p, n: pcl_holefill.fill(p, n, radius=-1), ValueError, "radius takes a number"),
-    (lambda p, n: pcl_holefill.fill(p, n, sigma_n="sharp"), ValueError, "sigma_n takes a number > 0 or 'sup'"),
+    (lambda p, n: pcl_holefill.fill(p, n, sigma_n="sharp"), ValueError, "sigma_n takes a number >= 0, 'auto' (= 0) or 'sup'"),
     (lambda p, n: pcl_holefill.fill(p, n, sigma_n=[1]), TypeError, "sigma_n takes"),
     (lambda p, n: pcl_holefill.fill(p, n, max_passes=-1), ValueError, "max_passes takes a whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, max_passes=2.5), TypeError, "whole number"),

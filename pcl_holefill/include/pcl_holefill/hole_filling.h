@@ -41,9 +41,14 @@ namespace pcl_holefill
   *    Fig. 1(c) uses 1.1); 1 = constant. r never drops under max(2h, 1.5 d_eq).
   *  - sigma_d (setSigmaD): std of g1; 0 = r/2.
   *  - sigma_n (setSigmaN): std of g2 over |n_p - n_ref| (no unit; the paper
-  *    prints "BBL", which cannot apply to a normal difference): small (0.1,
-  *    the default) recovers sharp edges, corners and apexes; kSup (the
-  *    paper's "Sup") switches g2 off for round patches.
+  *    prints "BBL", which cannot apply to a normal difference): small (0.1)
+  *    recovers sharp edges, corners and apexes; kSup (the paper's "Sup")
+  *    switches g2 off for round patches. 0 (default) = per hole, twice the
+  *    spread of the normals around its rim, within 0.1..0.3: 0.1 on clean
+  *    rims (creases stay sharp; on clean smooth rims 0.1 and Sup give the
+  *    same error), wider where estimated normals are noisy, so that eq. (1)
+  *    keeps the neighbours that average the noise out. The report says
+  *    which value each hole got.
   *  - sigma_r (setSigmaR): the elastic force's width. The equilibrium
   *    distance, i.e. the spacing of the filled points, follows from eq. (6)
   *    as d_eq = sigma_r^2 ln(10^4), taken literally in cloud units (sigma_r
@@ -265,7 +270,7 @@ private:
   float radius_ = 0.f;
   float shrink_ = 1.f;
   float sigma_d_ = 0.f;
-  float sigma_n_ = 0.1f;
+  float sigma_n_ = 0.f;
   float sigma_r_ = 0.f;
   float spacing_factor_ = 1.1f;
   float termination_ratio_ = 0.3f;

@@ -34,7 +34,8 @@ _FLAGS = ("zero_order", "denoise", "quiet")
 
 _OPTION_HELP = {
     "radius": "neighbourhood radius r of eq. (1), (7) in cloud units; 0 = max(4h, 3.5p, 2.5 d_eq)",
-    "sigma_n": "normal dissimilarity std (no unit), or 'sup' to switch it off (round patches); "
+    "sigma_n": "normal dissimilarity std (no unit), 'auto' (= 0, per hole: 2 x the spread of the "
+               "rim's normals, within 0.1..0.3) or 'sup' to switch it off (round patches); "
                "small values recover sharp edges",
     "sigma_r": "elastic force width; d_eq = sigma_r^2 ln(1e4); 0 = d_eq from spacing",
     "spacing": "d_eq = spacing x sampling pitch when sigma_r is 0 (0.25..10)",
@@ -118,7 +119,7 @@ def _words(options):
             elif isinstance(value, (int, float, np.floating, np.integer)) and not isinstance(value, bool):
                 words += ["-sigma_n", "sup" if np.isinf(value) and value > 0 else repr(float(value))]
             else:
-                raise TypeError(f"sigma_n takes a number or 'sup', not {value!r}")
+                raise TypeError(f"sigma_n takes a number, 'auto' or 'sup', not {value!r}")
         elif name in _INTS:
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
                 raise TypeError(f"{name} takes a whole number, not {value!r}")

@@ -3,7 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_holefill/point_grid.h>
-#include <pcl_holefill/shapes.h>
+#include "shapes.h"
 
 #include <Eigen/Geometry>
 

@@ -11,6 +11,7 @@
  * their error, as the paper's Fig. 16).
  */
 #include "off_mesh.h"
+#include "reference_methods.h"
 
 #include "../pcl_holefill/tools/render.h"
 
@@ -18,11 +19,7 @@
 #include <pcl_holefill/point_grid.h>
 #include "shapes.h"
 
-#include <pcl/PolygonMesh.h>
-#include <pcl/conversions.h>
 #include <pcl/search/kdtree.h>
-#include <pcl/surface/mls.h>
-#include <pcl/surface/poisson.h>
 
 #include <chrono>
 #include <cstdio>
@@ -175,45 +172,6 @@ runHoleFill (const Cloud::Ptr &input, float sigma_n, double &seconds)
   return output;
 }
 
-Cloud
-runMls (const Cloud::Ptr &input, double h, double hole_radius, double &seconds)
-{
-  Cloud output;
-  pcl::MovingLeastSquares<pcl::PointNormal, pcl::PointNormal> mls;
-  mls.setInputCloud (input);
-  mls.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
-  mls.setSearchRadius (6.0 * h);
-  mls.setPolynomialOrder (2);
-  mls.setComputeNormals (true);
-  mls.setUpsamplingMethod (pcl::MovingLeastSquares<pcl::PointNormal, pcl::PointNormal>::VOXEL_GRID_DILATION);
-  mls.setDilationVoxelSize (static_cast<float> (1.5 * h));
-  // Enough dilation steps to reach the middle of the hole.
-  mls.setDilationIterations (static_cast<int> (std::ceil (hole_radius / (1.5 * h))) + 1);
-  seconds = timed ([&] { mls.process (output); });
-  return output;
-}
-
-Cloud
-runPoisson (const Cloud::Ptr &input, double &seconds)
-{
-  Cloud output;
-  pcl::Poisson<pcl::PointNormal> poisson;
-  poisson.setInputCloud (input);
-  poisson.setDepth (9);
-  pcl::PolygonMesh mesh;
-  seconds = timed ([&] { poisson.reconstruct (mesh); });
-  pcl::PointCloud<pcl::PointXYZ> vertices;
-  pcl::fromPCLPointCloud2 (mesh.cloud, vertices);
-  for (const auto &v : vertices)
-  {
-    pcl::PointNormal p;
-    p.getVector3fMap () = v.getVector3fMap ();
-    p.normal_x = p.normal_y = p.normal_z = std::numeric_limits<float>::quiet_NaN ();
-    output.push_back (p);
-  }
-  return output;
-}
-
 std::string
 row (const std::string &case_name, const Score &s)
 {
@@ -284,10 +242,10 @@ main (int argc, char **argv)
     Cloud smooth = runHoleFill (input, pcl_holefill::kSup, seconds);
     scores.push_back (score ("pcl_holefill smooth", c, cut, smooth, h, seconds, scale));
     attachNormals (scores.back (), smooth);
-    Cloud mls = runMls (input, h, c.hole.radius, seconds);
+    Cloud mls = bench::runMls (input, h, c.hole.radius, seconds);
     scores.push_back (score ("PCL MLS", c, cut, mls, h, seconds, scale));
     attachNormals (scores.back (), mls);
-    Cloud poisson = runPoisson (input, seconds);
+    Cloud poisson = bench::runPoisson (input, 9, seconds);
     scores.push_back (score ("PCL Poisson", c, cut, poisson, h, seconds, scale));
     attachNormals (scores.back (), poisson);
     for (const auto &s : scores)

@@ -576,10 +576,28 @@ fillSpacingRatio (const CutCloud &cut, const std::vector<Ball> &balls, const Clo
 }
 }  // namespace
 
+namespace
+{
+/** The samples a hole removed, at their noise-free positions: what a fill
+  * has to cover. The noisy ones lie up to 3 sigma off the surface, farther
+  * than the 1.5 pitches of the coverage test once sigma nears half a pitch,
+  * and no fill on the true surface could come near them. */
+Cloud
+missingSurface (const Case &c)
+{
+  if (c.noise == 0.0)
+    return build (c).removed;
+  Case clean = c;
+  clean.noise = 0.0;
+  clean.estimated = false;
+  return build (clean).removed;
+}
+}  // namespace
+
 Outcome
 runCase (const Case &c)
 {
-  const auto cut = build (c);
+  auto cut = build (c);
   const Cloud::Ptr kept (new Cloud (cut.kept));
   const double p = pitch (c.shape, c.points);
   Outcome o;
@@ -604,6 +622,11 @@ runCase (const Case &c)
   filler.filter (output);
   o.seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
   o.fill = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p);
+  if (c.noise > 0.0)
+  {
+    cut.removed = missingSurface (c);
+    o.fill.coverage = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p).coverage;
+  }
   const auto covered = coveredBalls (cut, c.holes, output, p);
   o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
   for (const auto &r : filler.getReports ())
@@ -629,3 +652,42 @@ runCase (const Case &c)
   return o;
 }
 }  // namespace corpus
+
+namespace corpus
+{
+MethodScore
+scoreMethod (const Case &c, const CutCloud &cut, const Cloud &output)
+{
+  const double p = pitch (c.shape, c.points);
+  std::vector<Eigen::Vector3f> input_positions, output_positions;
+  const pcl_holefill::PointGrid input_grid = gridOf (cut.kept, input_positions);
+  const pcl_holefill::PointGrid output_grid = gridOf (output, output_positions);
+  MethodScore s;
+  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  for (const auto &x : output_positions)
+  {
+    const Eigen::Vector3d xd = x.cast<double> ();
+    const bool in_a_hole = std::any_of (c.holes.begin (), c.holes.end (), [&] (const Ball &b) {
+      return (xd - b.centre).norm () <= b.radius + p;
+    });
+    input_grid.nearestK (x, 1, nearest);
+    if (!in_a_hole || (!nearest.empty () && nearest[0].sqr_distance == 0.f))
+      continue;
+    const double e = c.shape.distance (xd);
+    s.max_error = std::max (s.max_error, e);
+    s.mean_error += e;
+    ++s.fill;
+  }
+  s.mean_error = s.fill ? s.mean_error / s.fill : 0.0;
+  std::size_t covered = 0;
+  const Cloud missing = missingSurface (c);
+  for (const auto &q : missing)
+  {
+    output_grid.nearestK (q.getVector3fMap (), 1, nearest);
+    covered += !nearest.empty () && nearest[0].sqr_distance <= 2.25 * p * p ? 1 : 0;
+  }
+  s.coverage = missing.empty () ? 1.0 : static_cast<double> (covered) / missing.size ();
+  return s;
+}
+}  // namespace corpus
+

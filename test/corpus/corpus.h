@@ -127,6 +127,8 @@ namespace corpus
 struct Outcome
 {
   DetectionScore detection;
+  /** Errors and spill of the fill; its coverage counts the removed samples
+    * at their noise-free positions (the surface to cover). */
   pcl_holefill::shapes::FillQuality fill;
   std::size_t input = 0, output = 0;
   std::size_t reported = 0, closed = 0;  //!< holes in HoleFilling's reports, and of those reported closed
@@ -148,3 +150,21 @@ struct Outcome
 Outcome
 runCase (const Case &c);
 }  // namespace corpus
+
+namespace corpus
+{
+/** \brief Any method's output scored against a case's truth, for methods
+  * that may move or resample every point (PCL's MLS, Poisson): its points
+  * within a pitch of a cut ball that are not input points are its fill. */
+struct MethodScore
+{
+  double coverage = 0.0;    //!< cut samples within 1.5 pitches of an output point
+  double max_error = 0.0;   //!< fill to the true surface
+  double mean_error = 0.0;
+  std::size_t fill = 0;
+};
+
+MethodScore
+scoreMethod (const Case &c, const CutCloud &cut, const Cloud &output);
+}  // namespace corpus
+

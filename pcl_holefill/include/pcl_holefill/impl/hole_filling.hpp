@@ -67,14 +67,21 @@ constexpr float kToleranceInSpacings = 0.1f;
 // make every candidate near it look like an overshoot (the fill then stops).
 constexpr float kToleranceInNoiseSigmas = 2.5f;
 // Above this rim noise (in mean spacings) the first-order extension is off,
-// unless the rim's normals fit a linear field within
-// kFirstOrderMaxNormalNonlinearity (RMS, rimNormalNonlinearity): the normals
-// are then good (exact, or estimated from many points) and only the
-// positions are noisy. Measured: exact normals 0.000-0.013 (sphere, cube,
-// cylinder), voxel-grid centroids 0.017-0.021, normals estimated at noise
-// 0.1 % of the diagonal 0.018-0.04, at 0.3 % 0.06-0.13.
+// unless the rim's normals are good enough to extrapolate (normalsAreLinear).
 constexpr float kFirstOrderMaxNoiseInSpacings = 0.1f;
+// Normals that fit a linear field within this RMS (rimNormalNonlinearity)
+// are good. Measured: exact normals 0.000-0.013 (sphere, cube, cylinder),
+// voxel-grid centroids 0.017-0.021, normals estimated at noise 0.1 % of the
+// diagonal 0.018-0.04, at 0.3 % 0.06-0.13.
 constexpr float kFirstOrderMaxNormalNonlinearity = 0.015f;
+// ... and so are normals within kSmoothRimMaxNonlinearity on a smooth rim,
+// one where at most kSmoothRimMaxCreaseShare of the rim points see a crease
+// (a neighbour's normal more than kCreaseNormalDifference, ~30 degrees,
+// away). Near a crease, estimated normals are blended across it, and
+// extrapolating that blend bends the patch (cube edges 0.013 -> 0.023).
+constexpr float kSmoothRimMaxNonlinearity = 0.05f;
+constexpr float kSmoothRimMaxCreaseShare = 0.02f;
+constexpr float kCreaseNormalDifference = 0.5f;
 // The noise is measured in a ball of this many mean spacings around each rim point.
 constexpr float kNoiseReachInSpacings = 2.5f;
 // Automatic sigma_n: this many times the rim's normal spread (below), and
@@ -154,6 +161,28 @@ rimNormalSpread (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<Point
   });
 }
 
+/** The share of rim points that see a crease: a neighbour within \a reach
+  * whose normal differs from theirs by more than \a difference. */
+template <typename PointT> float
+rimCreaseShare (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+                float reach, float difference)
+{
+  std::size_t seen = 0, creased = 0;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : rim)
+  {
+    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < 5)
+      continue;
+    ++seen;
+    const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
+    creased += std::any_of (found.begin (), found.end (), [&] (int q) {
+      return isOrientedPoint (cloud[q]) && (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > difference;
+    }) ? 1 : 0;
+  }
+  return seen ? static_cast<float> (creased) / seen : 0.f;
+}
+
 /** How far the normals around a rim are from a linear field (what the
   * first-order extension extrapolates): the median, over rim points, of the
   * RMS residual of a least-squares fit n(u, v) = a + b u + c v over the
@@ -183,6 +212,19 @@ rimNormalNonlinearity (const pcl::PointCloud<PointT> &cloud, pcl::search::Search
     const Eigen::MatrixXf fit = a.topRows (rows).colPivHouseholderQr ().solve (normals.topRows (rows));
     return (a.topRows (rows) * fit - normals.topRows (rows)).norm () / std::sqrt (static_cast<float> (rows));
   });
+}
+
+/** Are the rim's normals good enough for the first-order extension to
+  * extrapolate them: linear within kFirstOrderMaxNormalNonlinearity, or
+  * within kSmoothRimMaxNonlinearity where the rim has no crease? */
+template <typename PointT> bool
+normalsAreLinear (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+                  float reach)
+{
+  const float nonlinearity = rimNormalNonlinearity (cloud, search, rim, reach);
+  return nonlinearity <= kFirstOrderMaxNormalNonlinearity ||
+         (nonlinearity <= kSmoothRimMaxNonlinearity &&
+          rimCreaseShare (cloud, search, rim, reach, kCreaseNormalDifference) <= kSmoothRimMaxCreaseShare);
 }
 }  // namespace detail
 
@@ -521,10 +563,8 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   // normals keep it: without it a sphere cap came out flat (max error 0.02,
   // the cap's sagitta, at noise 0.1 % of the diagonal; now 0.0011-0.0016).
   report.first_order = first_order_ && (report.noise <= detail::kFirstOrderMaxNoiseInSpacings * h ||
-                                        detail::rimNormalNonlinearity (*surroundings.cloud, *surroundings.search,
-                                                                       surroundings.rim,
-                                                                       detail::kNoiseReachInSpacings * h) <=
-                                            detail::kFirstOrderMaxNormalNonlinearity);
+                                        detail::normalsAreLinear (*surroundings.cloud, *surroundings.search,
+                                                                  surroundings.rim, detail::kNoiseReachInSpacings * h));
   sampler.setFirstOrder (report.first_order);
   sampler.setConstraintTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));

@@ -13,12 +13,14 @@
 #include <pcl_holefill/boundary_point_test.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
+#include <pcl_holefill/normal_orientation.h>
 
 #include <pcl/console/print.h>
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 #include <tuple>
 
 namespace
@@ -287,6 +289,35 @@ TEST (AutomaticSigmaN, StaysSharpOnCleanRims)
     EXPECT_FLOAT_EQ (o.min_sigma_n, 0.1f);
     EXPECT_FLOAT_EQ (o.max_sigma_n, 0.1f);
   }
+}
+
+// Normals estimated by PCL from noisy random samples come with arbitrary
+// signs; orientNormalsConsistently must make them agree with each other and
+// point out of the closed model. Before every reached neighbour voted and
+// the whole part decided its sign, one wrong step near the seed turned a
+// third of a cube (or all of it) inside out, and detection found no hole.
+TEST (NormalOrientation, NoisyRandomSamplesComeOutConsistentAndOutward)
+{
+  for (const int m : {0, 1, 2, 3})
+    for (const double noise : {0.003, 0.005})
+    {
+      auto c = makeCase (model (m), Sampling::kRandom, noise, false, false);
+      const Cloud exact = corpus::build (c).kept;
+      c.estimated = true;
+      Cloud cloud = corpus::build (c).kept;
+      ASSERT_EQ (cloud.size (), exact.size ());
+      std::mt19937 random (7);
+      for (auto &p : cloud)
+        if (random () % 2)
+          p.getNormalVector3fMap () *= -1.f;
+      pcl_holefill::orientNormalsConsistently (cloud);
+      std::size_t outward = 0;
+      for (std::size_t i = 0; i < cloud.size (); ++i)
+        outward += cloud[i].getNormalVector3fMap ().dot (exact[i].getNormalVector3fMap ()) > 0.f ? 1 : 0;
+      // reached: 99.7 % to 100 % (the rest sit on edges, where PCA normals are
+      // blended); before: 40 % to 97 %
+      EXPECT_GE (outward, 0.99 * cloud.size ()) << c.shape.name << " noise " << noise;
+    }
 }
 
 // Where a front was cut (its candidates overshot on rough normals) while the

@@ -14,6 +14,38 @@
 
 namespace pcl_holefill
 {
+namespace detail
+{
+/** Should a consistently oriented part be turned over? Its sign is decided
+  * by the whole part, not by the one seed it grew from (on noisy samples the
+  * highest point is the noisiest, and a wrong start turned whole clouds
+  * inside out): outward on a closed part (normals away from its centroid),
+  * else upward (+z, as a scan seen from above). */
+template <typename Normal> bool
+partFacesInward (const std::vector<int> &part, const std::vector<Eigen::Vector3f> &positions, Normal normal)
+{
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  for (const int i : part)
+    centroid += positions[i];
+  centroid /= static_cast<float> (part.size ());
+  float outward = 0.f, upward = 0.f;
+  for (const int i : part)
+  {
+    const Eigen::Vector3f n = normal (i).normalized ();
+    const Eigen::Vector3f away = positions[i] - centroid;
+    const float length = away.norm ();
+    outward += length > 0.f ? n.dot (away) / length : 0.f;
+    upward += n.z ();
+  }
+  // A closed surface's normals point away from its centroid nearly
+  // everywhere (a sphere: mean 1); an open patch's do not, either way.
+  constexpr float kClosedMeanOutward = 0.2f;
+  if (std::abs (outward) > kClosedMeanOutward * part.size ())
+    return outward < 0.f;
+  return upward < 0.f;
+}
+}  // namespace detail
+
 template <typename PointT> std::size_t
 orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
 {
@@ -36,12 +68,16 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
   // points across a sharp edge (dot near 0), whether each lies on the same
   // side of the other's tangent plane (both below on a convex edge, both
   // above on a concave one). Positive: consistent; negative: one is flipped.
+  // The side test counts only as far as the normals are not parallel: for
+  // close points on noisy samples it is mostly noise (it turned a fifth of
+  // a noisy sphere inside out).
   auto agreement = [&] (int a, int b) {
     const Eigen::Vector3f na = normal (a).normalized (), nb = normal (b).normalized ();
     const Eigen::Vector3f d = positions[b] - positions[a];
     const float length = d.norm ();
     const float side = length > 0.f ? (d.dot (na) / length) * (-d.dot (nb) / length) : 0.f;
-    return na.dot (nb) + 2.f * side;
+    const float dot = na.dot (nb);
+    return dot + 2.f * (1.f - std::abs (dot)) * side;
   };
   std::vector<char> reached (usable.size (), 0);
   // Seeds in order of decreasing z: each unreached one starts a new part.
@@ -52,38 +88,55 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
   std::size_t flipped = 0;
   std::vector<PointGrid::Neighbour> near;
   using Link = std::pair<float, std::pair<int, int>>;  // (agreement, (from, to)), best first
+  std::priority_queue<Link> links;
+  std::vector<int> part;
+  // Reaches \a to from the reached \a from: every reached neighbour votes on
+  // its orientation, not only \a from (on noisy samples one close pair's
+  // side test is a coin toss: noise of 0.3 % of the diagonal flipped whole
+  // faces of a cube), and \a from always does (kNN is not symmetric). Then
+  // queues the links to its unreached neighbours; true if it was flipped.
+  auto reach = [&] (int from, int to) {
+    grid.nearestK (positions[to], k + 1, near);
+    float vote = from == to ? normal (to).z () : 0.f;  // a part's seed: upward
+    bool from_voted = from == to;
+    for (const auto &n : near)
+      if (reached[n.id])
+      {
+        vote += agreement (n.id, to);
+        from_voted = from_voted || n.id == from;
+      }
+    if (!from_voted)
+      vote += agreement (from, to);
+    reached[to] = 1;
+    part.push_back (to);
+    const bool flip = vote < 0.f;
+    if (flip)
+      normal (to) = -normal (to);
+    for (const auto &n : near)
+      if (!reached[n.id])
+        links.push ({std::abs (agreement (to, n.id)), {to, n.id}});
+    return flip;
+  };
   for (const int seed : seeds)
   {
     if (reached[seed])
       continue;
-    reached[seed] = 1;
-    if (normal (seed).z () < 0.f)
-    {
-      normal (seed) = -normal (seed);
-      ++flipped;
-    }
-    std::priority_queue<Link> links;
-    auto push_links = [&] (int from) {
-      grid.nearestK (positions[from], k + 1, near);
-      for (const auto &n : near)
-        if (!reached[n.id])
-          links.push ({std::abs (agreement (from, n.id)), {from, n.id}});
-    };
-    push_links (seed);
-    while (!links.empty ())  // every point is reached once and pushes at most k links
+    part.clear ();
+    std::size_t part_flipped = reach (seed, seed) ? 1 : 0;
+    while (!links.empty ())  // every point is reached once and queues at most k + 1 links
     {
       const auto [from, to] = links.top ().second;
       links.pop ();
-      if (reached[to])
-        continue;
-      reached[to] = 1;
-      if (agreement (from, to) < 0.f)
-      {
-        normal (to) = -normal (to);
-        ++flipped;
-      }
-      push_links (to);
+      if (!reached[to])
+        part_flipped += reach (from, to) ? 1 : 0;
     }
+    if (detail::partFacesInward (part, positions, normal))
+    {
+      for (const int i : part)
+        normal (i) = -normal (i);
+      part_flipped = part.size () - part_flipped;  // the ones not flipped before are now
+    }
+    flipped += part_flipped;
   }
   return flipped;
 }

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -92,14 +93,14 @@ TEST_F (Command, FillsAPcdKeepingEveryInputPointAndMarkingTheFill)
   std::ifstream report (path ("r.json"));
   const std::string json ((std::istreambuf_iterator<char> (report)), {});
   EXPECT_NE (json.find ("\"closed\": true"), std::string::npos) << json;
-  EXPECT_NE (json.find ("\"sigma_n\": 0.1}"), std::string::npos) << json;  // chosen: a clean, sharp rim
+  EXPECT_NE (json.find ("\"sigma_n\": 0.1,"), std::string::npos) << json;  // chosen: a clean, sharp rim
 }
 
 TEST_F (Command, SigmaNTakesAutoANumberOrSupAndTheReportTellsWhich)
 {
   ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);
   for (const auto &[value, reported] : std::vector<std::pair<std::string, std::string>>{
-           {"auto", "0.1}"}, {"0", "0.1}"}, {"0.25", "0.25}"}, {"sup", "\"sup\"}"}})
+           {"auto", "0.1,"}, {"0", "0.1,"}, {"0.25", "0.25,"}, {"sup", "\"sup\","}})
   {
     ASSERT_EQ (run (path ("in.pcd") + " " + path ("out.pcd") + " -sigma_n " + value + " -report " + path ("s.json")), 0)
         << stderrText ();
@@ -283,6 +284,9 @@ TEST_F (Command, GivenLoopsAreMeasuredInTheReport)
   EXPECT_GT (diameter, 0.25) << json;
   EXPECT_LT (diameter, 0.45) << json;
   EXPECT_NE (json.find ("\"centre\": ["), std::string::npos);
+  const auto boundary = json.find ("\"boundary\": [");
+  ASSERT_NE (boundary, std::string::npos) << json;
+  EXPECT_TRUE (std::isdigit (static_cast<unsigned char> (json[boundary + 13]))) << json;  // the loop's indices
 }
 
 TEST_F (Command, DetectOnlyWritesTheLoopsThatFillingTakes)

@@ -25,6 +25,18 @@ quoted (const std::string &text)
   }
   return out + "\"";
 }
+
+/** [i, j, ...] */
+std::string
+indexList (const pcl::Indices &indices)
+{
+  std::ostringstream out;
+  out << '[';
+  for (std::size_t k = 0; k < indices.size (); ++k)
+    out << (k ? ", " : "") << indices[k];
+  out << ']';
+  return out.str ();
+}
 }  // namespace
 
 std::string
@@ -50,9 +62,10 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
         << ", \"first_order\": " << (r.first_order ? "true" : "false") << ", \"sigma_n\": ";
     if (std::isinf (r.sigma_n))
-      out << "\"sup\"}";  // JSON has no infinity
+      out << "\"sup\"";  // JSON has no infinity
     else
-      out << r.sigma_n << "}";
+      out << r.sigma_n;
+    out << ", \"boundary\": " << indexList (r.boundary) << "}";
   }
   out << (reports.empty () ? "]" : "\n  ]") << "\n}\n";
   return out.str ();
@@ -69,10 +82,7 @@ loopsJson (const std::string &input, std::size_t input_points, const std::vector
     out << (i ? "," : "") << "\n    {\"hole\": " << (l.is_hole ? "true" : "false")
         << ", \"closed\": " << (l.closed ? "true" : "false") << ", \"diameter\": " << l.diameter
         << ", \"length\": " << l.length << ", \"spacing\": " << l.mean_spacing << ", \"pitch\": " << l.pitch
-        << ", \"indices\": [";
-    for (std::size_t k = 0; k < l.indices.size (); ++k)
-      out << (k ? ", " : "") << l.indices[k];
-    out << "]}";
+        << ", \"indices\": " << indexList (l.indices) << "}";
   }
   out << (loops.empty () ? "]" : "\n  ]") << "\n}\n";
   return out.str ();

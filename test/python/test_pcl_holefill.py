@@ -92,6 +92,11 @@ def test_cube_corner_is_filled_sharp_and_the_input_is_untouched(corner):
     assert not res.filled[:n].any() and res.filled[n:].all()
     assert len(res.reports) == 1 and res.reports[0]["closed"]
     assert res.reports[0]["sigma_n"] == pytest.approx(0.1)  # automatic: a clean, sharp rim
+    # The report locates the hole: its boundary loop, as indices into the input rows.
+    rim = kept[res.reports[0]["boundary"]]
+    assert len(rim) >= 20
+    distances = np.linalg.norm(rim - 1.0, axis=1)
+    assert (distances >= 0.2 - 1e-9).all() and (distances <= 0.2 + 3 * pitch(6.0)).all()
     fill = res.points[res.filled]
     p = pitch(6.0)
     # Every removed sample within 1.5 pitches of an output point.

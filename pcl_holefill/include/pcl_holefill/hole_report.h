@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <pcl/types.h>
 
 #include <cstddef>
 
@@ -47,6 +48,7 @@ struct HoleReport
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
   float sigma_n = 0.f;                 //!< sigma_n used (chosen per hole when automatic; kSup = off)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
+  pcl::Indices boundary;               //!< the hole's boundary loop: indices into the input cloud, in order
 };
 
 }  // namespace pcl_holefill

@@ -846,6 +846,7 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
 {
   filled.clear ();
   report.boundary_points = loop.indices.size ();
+  report.boundary = loop.indices;
   report.diameter = loop.diameter;
   // 1. The rim (usable points only) and the hole's scale.
   pcl::Indices rim;

@@ -4,6 +4,7 @@
  *
  * The pcl_holefill command, run as a user would run it.
  */
+#include "render.h"
 #include "shapes.h"
 
 #include <pcl/common/io.h>
@@ -12,10 +13,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -413,4 +414,21 @@ TEST_F (Command, ReadsAndWritesPlainTextClouds)
   std::ofstream (path ("bad.xyz")) << "0 0 0\n1 0 0\n0 1 oops\n";
   EXPECT_EQ (run (path ("bad.xyz") + " " + path ("o.xyz")), 1);
   EXPECT_NE (stderrText ().find ("line 3"), std::string::npos) << stderrText ();
+}
+
+// A few stray points far away must not shrink the picture of the object to
+// a dot: a 1 x 1 patch with one point 1000 away still fills most of the frame.
+TEST (Render, StrayPointsDoNotShrinkThePicture)
+{
+  std::vector<pcl_holefill_tool::Splat> splats;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j)
+      splats.push_back ({Eigen::Vector3f (i / 99.f, j / 99.f, 0.f), Eigen::Vector3f::UnitZ (), Eigen::Vector3f (0.5f, 0.5f, 0.5f)});
+  splats.push_back ({Eigen::Vector3f (1000.f, 1000.f, 0.f), Eigen::Vector3f::UnitZ (), Eigen::Vector3f (1.f, 0.f, 0.f)});
+  const auto image = pcl_holefill_tool::renderSplats (splats, -Eigen::Vector3f::UnitZ (), 200);
+  std::size_t drawn = 0;
+  for (std::size_t k = 0; k < image.rgb.size (); k += 3)
+    drawn += image.rgb[k] != 255 || image.rgb[k + 1] != 255 || image.rgb[k + 2] != 255;
+  // reached: 77 % of the pixels (the frame keeps a margin; before: a few pixels)
+  EXPECT_GT (drawn, 0.6 * 200 * 200);
 }

@@ -17,6 +17,34 @@
 
 namespace pcl_holefill_tool
 {
+namespace
+{
+/** The part of the view plane (coordinates along \a right and \a up) to
+  * show: what holds all but 0.5 % of the points on each side, widened by
+  * 2 %. A few stray points far away would otherwise shrink the object to a
+  * dot in an empty frame. */
+void
+viewWindow (const std::vector<Eigen::Vector3f> &positions, const Eigen::Vector3f &right, const Eigen::Vector3f &up,
+            Eigen::Vector2f &lo, Eigen::Vector2f &hi)
+{
+  constexpr double kOutlierShare = 0.005;
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    std::vector<float> values;
+    values.reserve (positions.size ());
+    for (const auto &p : positions)
+      values.push_back (p.dot (axis == 0 ? right : up));
+    const auto skip = static_cast<std::size_t> (kOutlierShare * values.size ());
+    std::nth_element (values.begin (), values.begin () + skip, values.end ());
+    const float low = values[skip];
+    std::nth_element (values.begin (), values.end () - 1 - skip, values.end ());
+    const float high = values[values.size () - 1 - skip];
+    lo[axis] = low - 0.02f * (high - low);
+    hi[axis] = high + 0.02f * (high - low);
+  }
+}
+}  // namespace
+
 Image
 renderSplats (const std::vector<Splat> &splats, const Eigen::Vector3f &view_direction, int size)
 {
@@ -34,13 +62,8 @@ renderSplats (const std::vector<Splat> &splats, const Eigen::Vector3f &view_dire
     up = Eigen::Vector3f::UnitY () - forward.dot (Eigen::Vector3f::UnitY ()) * forward;
   up.normalize ();
   const Eigen::Vector3f right = forward.cross (up);
-  Eigen::Vector2f lo (std::numeric_limits<float>::max (), std::numeric_limits<float>::max ()), hi = -lo;
-  for (const auto &p : positions)
-  {
-    const Eigen::Vector2f q (p.dot (right), p.dot (up));
-    lo = lo.cwiseMin (q);
-    hi = hi.cwiseMax (q);
-  }
+  Eigen::Vector2f lo, hi;
+  viewWindow (positions, right, up, lo, hi);
   const float extent = std::max ((hi - lo).maxCoeff (), 1e-9f);
   const float scale = 0.9f * size / extent;  // pixels per unit, 5 % margin
   const Eigen::Vector2f offset = 0.5f * (lo + hi);
@@ -69,6 +92,8 @@ renderSplats (const std::vector<Splat> &splats, const Eigen::Vector3f &view_dire
       continue;
     const float px = (s.position.dot (right) - offset.x ()) * scale + 0.5f * size;
     const float py = 0.5f * size - (s.position.dot (up) - offset.y ()) * scale;
+    if (!(px > -radius_px - 1.f && px < size + radius_px + 1.f && py > -radius_px - 1.f && py < size + radius_px + 1.f))
+      continue;  // out of the window (a stray point): also keeps the casts below in range
     const float z = s.position.dot (forward);
     const Eigen::Vector3f n = s.normal.normalized ();
     const float shade = 0.3f + 0.7f * std::abs (n.dot (light));

@@ -267,6 +267,20 @@ private:
   bool
   collectHoles (const PointCloudConstPtr &working, const SearchPtr &search, std::vector<BoundaryLoop> &holes) const;
 
+  /** Parameters and indices usable, input not empty (else says why). */
+  bool
+  inputIsUsable () const;
+
+  /** \a given: the points the output starts with (the input, or the indexed
+    * points; denoised if asked). \a working: the same, consistently oriented. */
+  void
+  prepareClouds (PointCloudConstPtr &given, PointCloudConstPtr &working) const;
+
+  /** Every hole filled (side by side), its points in \a fills, reports_ set. */
+  void
+  fillHoles (const PointCloud &working, pcl::search::Search<PointT> &search, const std::vector<BoundaryLoop> &holes,
+             std::vector<PointCloud> &fills);
+
   float radius_ = 0.f;
   float shrink_ = 1.f;
   float sigma_d_ = 0.f;

@@ -48,7 +48,8 @@ struct HoleReport
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
   float sigma_n = 0.f;                 //!< sigma_n used (chosen per hole when automatic; kSup = off)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
-  pcl::Indices boundary;               //!< the hole's boundary loop: indices into the input cloud, in order
+  pcl::Indices boundary;               //!< the hole's boundary loop, in order: indices of the output's first
+                                       //!< points (the input, or the points of setIndices)
 };
 
 }  // namespace pcl_holefill

@@ -257,7 +257,8 @@ HoleFilling<PointT>::checkParameters () const
     bad = "min hole size (2..100 pitches)";
   if (bad)
   {
-    PCL_ERROR ("[pcl_holefill::HoleFilling] Invalid parameter: %s. Nothing filtered.\n", bad);
+    PCL_ERROR ("[pcl_holefill::%s::checkParameters] Invalid parameter: %s. Nothing filtered.\n",
+               getClassName ().c_str (), bad);
     return false;
   }
   return true;
@@ -295,8 +296,8 @@ HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const Sear
     {
       if (i < 0 || static_cast<std::size_t> (i) >= working_of.size () || working_of[i] < 0)
       {
-        PCL_ERROR ("[pcl_holefill::HoleFilling] A given hole uses index %d, which is not among the input "
-                   "points (or the indices set). Nothing filtered.\n", static_cast<int> (i));
+        PCL_ERROR ("[pcl_holefill::%s::collectHoles] A given hole uses index %d, which is not among the input "
+                   "points (or the indices set). Nothing filtered.\n", getClassName ().c_str (), static_cast<int> (i));
         return false;
       }
       i = working_of[i];
@@ -313,31 +314,31 @@ HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const Sear
   return true;
 }
 
-template <typename PointT> void
-HoleFilling<PointT>::applyFilter (PointCloud &output)
+template <typename PointT> bool
+HoleFilling<PointT>::inputIsUsable () const
 {
-  reports_.clear ();
   if (!checkParameters ())
-  {
-    output.clear ();
-    return;
-  }
+    return false;
   if (!indicesInRange (*indices_, input_->size ()))
   {
-    PCL_ERROR ("[pcl_holefill::HoleFilling] The indices set with setIndices() address points outside the "
-               "cloud (%zu points). Nothing filtered.\n", input_->size ());
-    output.clear ();
-    return;
+    PCL_ERROR ("[pcl_holefill::%s::applyFilter] The indices set with setIndices() address points outside the "
+               "cloud (%zu points). Nothing filtered.\n", getClassName ().c_str (), input_->size ());
+    return false;
   }
   if (indices_->empty ())
   {
-    PCL_WARN ("[pcl_holefill::HoleFilling] The input is empty: nothing to fill.\n");
-    output.clear ();
-    return;
+    PCL_WARN ("[pcl_holefill::%s::applyFilter] The input is empty: nothing to fill.\n", getClassName ().c_str ());
+    return false;
   }
-  // The points to work on: the input itself when the filter sees all of it
-  // unchanged (no copy of a large cloud), else a copy of the indexed points.
-  PointCloudConstPtr working = input_;
+  return true;
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::prepareClouds (PointCloudConstPtr &given, PointCloudConstPtr &working) const
+{
+  // The input itself when the filter sees all of it unchanged (no copy of a
+  // large cloud), else a copy of the indexed points.
+  working = input_;
   const bool whole_input = indices_->size () == input_->size () &&
                            std::all_of (indices_->begin (), indices_->end (),
                                         [k = 0] (pcl::index_t i) mutable { return i == k++; });
@@ -357,20 +358,61 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     if (denoised->size () == working->size ())
       working = denoised;
   }
-
   // Flipped normals would read as sharp edges everywhere: work on an oriented
   // copy (the output keeps the given normals).
-  const PointCloudConstPtr given = working;
+  given = working;
   const float flipped = flippedNeighbourShare (*working);
   if (flipped > detail::kMaxFlippedShare)
   {
-    PCL_WARN ("[pcl_holefill::HoleFilling] %.0f%% of neighbouring normals point opposite ways: the normals are "
-              "not consistently oriented. Filling with a consistently oriented copy.\n", 100.f * flipped);
+    PCL_WARN ("[pcl_holefill::%s::applyFilter] %.0f%% of neighbouring normals point opposite ways: the normals are "
+              "not consistently oriented. Filling with a consistently oriented copy.\n", getClassName ().c_str (),
+              100.f * flipped);
     PointCloudPtr oriented (new PointCloud (*working));
     orientNormalsConsistently (*oriented);
     working = oriented;
   }
+}
 
+template <typename PointT> void
+HoleFilling<PointT>::fillHoles (const PointCloud &working, pcl::search::Search<PointT> &search,
+                                const std::vector<BoundaryLoop> &holes, std::vector<PointCloud> &fills)
+{
+  fills.assign (holes.size (), PointCloud ());
+  reports_.assign (holes.size (), HoleReport ());
+  // Holes side by side; a single hole gets the threads itself (its
+  // candidates are placed side by side within each pass).
+  const int threads = static_cast<int> (resolveThreadCount (threads_));
+  const int per_hole = holes.size () == 1 ? threads : 1;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (holes.size () > 1)
+  for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
+  {
+    fillHole (working, search, holes[h], fills[h], reports_[h], per_hole);
+    reports_[h].points_added = fills[h].size ();
+    if (progress_)
+    {
+#pragma omp critical(pcl_holefill_progress)
+      progress_ (static_cast<std::size_t> (h), holes.size (), reports_[h]);
+    }
+  }
+  std::size_t next = working.size ();
+  for (std::size_t h = 0; h < holes.size (); ++h)
+  {
+    reports_[h].first_output_index = next;
+    next += fills[h].size ();
+  }
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::applyFilter (PointCloud &output)
+{
+  reports_.clear ();
+  if (!inputIsUsable ())
+  {
+    output.clear ();
+    return;
+  }
+  PointCloudConstPtr given, working;
+  prepareClouds (given, working);
   // Detection first, then the search that gathers each hole's surroundings:
   // the two never take memory at the same time.
   SearchPtr search = search_;
@@ -383,36 +425,13 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
     return;
   }
   if (holes.empty ())
+    PCL_DEBUG ("[pcl_holefill::%s::applyFilter] No hole to fill: the output is the input.\n",
+               getClassName ().c_str ());
+  std::vector<PointCloud> fills;
+  if (!holes.empty ())
   {
-    PCL_DEBUG ("[pcl_holefill::HoleFilling] No hole to fill: the output is the input.\n");
-    writeOutput (*given, {}, output);
-    return;
-  }
-  search->setInputCloud (working);
-
-  std::vector<PointCloud> fills (holes.size ());
-  reports_.assign (holes.size (), HoleReport ());
-  // Holes side by side; a single hole gets the threads itself (its
-  // candidates are placed side by side within each pass).
-  const int threads = static_cast<int> (resolveThreadCount (threads_));
-  const int per_hole = holes.size () == 1 ? threads : 1;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (holes.size () > 1)
-  for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
-  {
-    fillHole (*working, *search, holes[h], fills[h], reports_[h], per_hole);
-    reports_[h].points_added = fills[h].size ();
-    if (progress_)
-    {
-#pragma omp critical(pcl_holefill_progress)
-      progress_ (static_cast<std::size_t> (h), holes.size (), reports_[h]);
-    }
-  }
-
-  std::size_t next = working->size ();
-  for (std::size_t h = 0; h < holes.size (); ++h)
-  {
-    reports_[h].first_output_index = next;
-    next += fills[h].size ();
+    search->setInputCloud (working);
+    fillHoles (*working, *search, holes, fills);
   }
   writeOutput (*given, fills, output);
 }

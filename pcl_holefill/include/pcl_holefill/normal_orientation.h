@@ -5,7 +5,6 @@
 #pragma once
 
 #include <pcl/point_cloud.h>
-#include <pcl/search/search.h>
 
 namespace pcl_holefill
 {
@@ -30,12 +29,6 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k = 12);
   * under -0.5): about 0 for an oriented cloud, about 0.5 for random signs. */
 template <typename PointT> float
 flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k = 8, std::size_t samples = 2000);
-
-/** \brief The same, with the neighbours from \a search (over \a cloud), so
-  * that a caller that has one builds nothing. */
-template <typename PointT> float
-flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, const pcl::search::Search<PointT> &search, int k = 8,
-                       std::size_t samples = 2000);
 
 }  // namespace pcl_holefill
 

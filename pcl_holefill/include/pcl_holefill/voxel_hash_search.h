@@ -56,16 +56,6 @@ public:
   radiusSearch (const PointT &point, double radius, pcl::Indices &k_indices,
                 std::vector<float> &k_sqr_distances, unsigned int max_nn = 0) const override;
 
-  /** \brief The same queries on a bare position, for code that has no point. */
-  void
-  nearestK (const Eigen::Vector3f &position, int k, std::vector<PointGrid::Neighbour> &out) const
-  { grid_.nearestK (position, k, out); }
-
-  void
-  withinRadius (const Eigen::Vector3f &position, float radius,
-                std::vector<PointGrid::Neighbour> &out) const
-  { grid_.withinRadius (position, radius, out); }
-
 private:
   int
   toIndices (const std::vector<PointGrid::Neighbour> &found, pcl::Indices &k_indices,

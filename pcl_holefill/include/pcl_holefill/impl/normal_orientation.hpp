@@ -142,32 +142,6 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
 }
 
 template <typename PointT> float
-flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, const pcl::search::Search<PointT> &search, int k,
-                       std::size_t samples)
-{
-  if (cloud.empty () || samples == 0)
-    return 0.f;
-  std::size_t pairs = 0, flipped = 0;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
-  const std::size_t stride = std::max<std::size_t> (1, cloud.size () / samples);
-  for (std::size_t i = 0; i < cloud.size (); i += stride)
-  {
-    if (!isOrientedPoint (cloud[i]))
-      continue;
-    const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
-    search.nearestKSearch (cloud[i], k + 1, found, sqr_distances);
-    for (const auto j : found)
-      if (j != static_cast<int> (i) && isOrientedPoint (cloud[j]))
-      {
-        ++pairs;
-        flipped += n.dot (cloud[j].getNormalVector3fMap ().normalized ()) < -0.5f;
-      }
-  }
-  return pairs ? static_cast<float> (flipped) / pairs : 0.f;
-}
-
-template <typename PointT> float
 flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k, std::size_t samples)
 {
   // An even subsample of at most 25 x samples points is enough to see
@@ -204,8 +178,6 @@ flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k, std::size_t 
 }  // namespace pcl_holefill
 
 #define PCL_INSTANTIATE_flippedNeighbourShare(T) \
-  template float pcl_holefill::flippedNeighbourShare<T> (const pcl::PointCloud<T> &, int, std::size_t); \
-  template float pcl_holefill::flippedNeighbourShare<T> (const pcl::PointCloud<T> &, \
-                                                         const pcl::search::Search<T> &, int, std::size_t);
+  template float pcl_holefill::flippedNeighbourShare<T> (const pcl::PointCloud<T> &, int, std::size_t);
 #define PCL_INSTANTIATE_orientNormalsConsistently(T) \
   template std::size_t pcl_holefill::orientNormalsConsistently<T> (pcl::PointCloud<T> &, int);

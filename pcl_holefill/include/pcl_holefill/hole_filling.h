@@ -66,6 +66,8 @@ namespace pcl_holefill
   *    the hole from all sides takes, so a large hole is never cut short).
   *  - first order (setFirstOrder): continue the rim's curvature (default
   *    true; false is the paper's zero-order eq. (1), which makes cones).
+  *    Per hole it is left out where the rim is noisy and its normals too
+  *    rough to extrapolate (HoleReport::first_order says which).
   *  - denoise (setDenoise): the bilateral preprocessing of sec. 3.2 on the
   *    input first (the only case where input points move; default off).
   *  - max hole diameter (setMaxHoleDiameter): detected holes wider than

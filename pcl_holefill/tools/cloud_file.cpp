@@ -15,11 +15,6 @@
 
 namespace pcl_holefill_tool
 {
-namespace
-{
-const std::string kFormats = ".pcd, .ply, .xyz, .pts or .txt";
-}  // namespace
-
 std::string
 cloudFormat (const std::string &path)
 {
@@ -33,13 +28,19 @@ cloudFormat (const std::string &path)
   return ext == "pcd" || ext == "ply" ? ext : "";
 }
 
+std::string
+unknownFormatMessage (const std::string &path)
+{
+  return "unknown file type of '" + path + "' (expected .pcd, .ply, .xyz, .pts or .txt)";
+}
+
 bool
 loadCloud (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)
 {
   const std::string format = cloudFormat (path);
   if (format.empty ())
   {
-    error = "unknown file type of '" + path + "' (expected " + kFormats + ")";
+    error = unknownFormatMessage (path);
     return false;
   }
   try
@@ -68,7 +69,7 @@ saveCloud (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::strin
     return writeText (path, cloud, error);
   else
   {
-    error = "unknown file type of '" + path + "' (expected " + kFormats + ")";
+    error = unknownFormatMessage (path);
     return false;
   }
   if (status < 0)

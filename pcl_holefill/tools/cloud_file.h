@@ -14,6 +14,11 @@ namespace pcl_holefill_tool
 std::string
 cloudFormat (const std::string &path);
 
+/** \brief "unknown file type of 'PATH' (expected ...)": the one message for a
+  * file whose format cloudFormat() does not know. */
+std::string
+unknownFormatMessage (const std::string &path);
+
 /** \brief Reads a PCD or PLY file with all its fields (cloud_reader.h). On
   * failure returns false and puts a one-line reason in \a error; never
   * throws, never crashes on a malformed file. */

@@ -98,7 +98,7 @@ run (const Options &options)
 {
   const auto start = std::chrono::steady_clock::now ();
   if (cloudFormat (options.output).empty ())
-    return fail ("unknown file type of '" + options.output + "' (expected .pcd, .ply, .xyz, .pts or .txt)");
+    return fail (unknownFormatMessage (options.output));
   const std::string holes_path = options.detect_only ? options.output + ".holes.txt" : std::string ();
   for (const std::string *path : {&options.output, &options.report_file, &options.png_file, &holes_path})
     if (!path->empty () && !writable (*path))

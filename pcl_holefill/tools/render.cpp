@@ -69,8 +69,7 @@ renderSplats (const std::vector<Splat> &splats, const Eigen::Vector3f &view_dire
   const Eigen::Vector2f offset = 0.5f * (lo + hi);
   // Splat radius: the mean spacing, a little more so that surfaces close.
   pcl_holefill::PointGrid grid (pcl_holefill::PointGrid::suggestCellSize (positions, 4));
-  for (std::size_t i = 0; i < positions.size (); ++i)
-    grid.insert (positions[i], static_cast<int> (i));
+  grid.build (positions);
   double spacing = 0.0;
   std::size_t counted = 0;
   std::vector<pcl_holefill::PointGrid::Neighbour> near;

@@ -67,9 +67,9 @@ constexpr float kToleranceInSpacings = 0.1f;
 // make every candidate near it look like an overshoot (the fill then stops).
 constexpr float kToleranceInNoiseSigmas = 2.5f;
 // Above this rim noise (in mean spacings) the first-order extension is off,
-// unless the rim's normals are good enough to extrapolate (normalsAreLinear).
+// unless the rim's normals are good enough to extrapolate (RimStatistics::normalsAreLinear).
 constexpr float kFirstOrderMaxNoiseInSpacings = 0.1f;
-// Normals that fit a linear field within this RMS (rimNormalNonlinearity)
+// Normals that fit a linear field within this RMS (RimStatistics::nonlinearity)
 // are good. Measured: exact normals 0.000-0.013 (sphere, cube, cylinder),
 // voxel-grid centroids 0.017-0.021, normals estimated at noise 0.1 % of the
 // diagonal 0.018-0.04, at 0.3 % 0.06-0.13.
@@ -103,128 +103,130 @@ median (std::vector<float> &values)
   return values[values.size () / 2];
 }
 
-/** The median over the rim points of \a measure (point index, its
-  * neighbours within \a reach), at points with at least \a min_neighbours;
-  * \a measure returns NaN where it cannot say. The rim's statistics below
-  * take the median so that the few rim points near a crease do not count. */
-template <typename PointT, typename Measure> float
-medianOverRim (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
-               float reach, int min_neighbours, Measure measure)
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN ();
+
+/** RMS distance of the points \a found to their best-fitting plane (NaN if none). */
+template <typename PointT> float
+planeRms (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &found)
 {
-  std::vector<float> values;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
-  for (const auto i : rim)
-    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) >= min_neighbours)
-    {
-      const float value = measure (i, found);
-      if (std::isfinite (value))
-        values.push_back (value);
-    }
-  return median (values);
+  EIGEN_ALIGN16 Eigen::Matrix3f covariance;
+  Eigen::Vector4f centroid;
+  if (pcl::computeMeanAndCovarianceMatrix (cloud, found, covariance, centroid) == 0)
+    return kNaN;
+  EIGEN_ALIGN16 Eigen::Vector3f values;
+  pcl::eigen33 (covariance, values);
+  return std::sqrt (std::max (0.f, values[0]));
 }
 
-/** The noise of the surface around a rim: the median, over rim points, of
-  * the RMS distance of their neighbours to the best-fitting plane. */
+/** The median |n_i - n_q| over the neighbours \a found (NaN if none);
+  * \a differences is scratch space. */
 template <typename PointT> float
-rimNoise (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
-          float reach)
+normalSpread (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &found, std::vector<float> &differences)
 {
-  return medianOverRim (cloud, search, rim, reach, 5, [&] (int, const pcl::Indices &found) {
-    EIGEN_ALIGN16 Eigen::Matrix3f covariance;
-    Eigen::Vector4f centroid;
-    if (pcl::computeMeanAndCovarianceMatrix (cloud, found, covariance, centroid) == 0)
-      return std::numeric_limits<float>::quiet_NaN ();
-    EIGEN_ALIGN16 Eigen::Vector3f values;
-    pcl::eigen33 (covariance, values);
-    return std::sqrt (std::max (0.f, values[0]));
+  const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
+  differences.clear ();
+  for (const auto q : found)
+    if (q != i && isOrientedPoint (cloud[q]))
+      differences.push_back ((cloud[q].getNormalVector3fMap ().normalized () - n).norm ());
+  return differences.empty () ? kNaN : median (differences);
+}
+
+/** Does a neighbour's normal differ from point \a i's by more than kCreaseNormalDifference? */
+template <typename PointT> bool
+seesCrease (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &found)
+{
+  const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
+  return std::any_of (found.begin (), found.end (), [&] (int q) {
+    return isOrientedPoint (cloud[q]) &&
+           (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > kCreaseNormalDifference;
   });
 }
 
-/** How much the normals around a rim differ where the surface is one piece:
-  * the median, over rim points, of the median |n_p - n_q| over the
-  * neighbours q within \a reach. A crease shows in fewer than half of any
-  * point's neighbours, so it does not count; curvature within the reach and
-  * the noise of estimated normals do. */
+/** RMS residual of the least-squares fit n(u, v) = a + b u + c v of the
+  * normals \a found around point \a i (u, v its tangent coordinates over
+  * \a reach); NaN with fewer than \a min_rows usable neighbours. */
 template <typename PointT> float
-rimNormalSpread (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search,
-                 const pcl::Indices &rim, float reach)
+linearNormalResidual (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &found, float reach,
+                      Eigen::Index min_rows)
 {
-  std::vector<float> differences;
-  return medianOverRim (cloud, search, rim, reach, 5, [&] (int i, const pcl::Indices &found) {
-    const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
-    differences.clear ();
-    for (const auto q : found)
-      if (q != i && isOrientedPoint (cloud[q]))
-        differences.push_back ((cloud[q].getNormalVector3fMap ().normalized () - n).norm ());
-    return differences.empty () ? std::numeric_limits<float>::quiet_NaN () : median (differences);
-  });
+  const Eigen::Vector3f x = cloud[i].getVector3fMap ();
+  const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
+  const Eigen::Vector3f u = n.unitOrthogonal (), v = n.cross (u);
+  Eigen::MatrixXf a (found.size (), 3), normals (found.size (), 3);
+  Eigen::Index rows = 0;
+  for (const auto q : found)
+  {
+    if (!isOrientedPoint (cloud[q]))
+      continue;
+    const Eigen::Vector3f d = cloud[q].getVector3fMap () - x;
+    a.row (rows) << 1.f, d.dot (u) / reach, d.dot (v) / reach;
+    normals.row (rows++) = cloud[q].getNormalVector3fMap ().normalized ().transpose ();
+  }
+  if (rows < min_rows)
+    return kNaN;
+  const Eigen::MatrixXf fit = a.topRows (rows).colPivHouseholderQr ().solve (normals.topRows (rows));
+  return (a.topRows (rows) * fit - normals.topRows (rows)).norm () / std::sqrt (static_cast<float> (rows));
 }
 
-/** The share of rim points that see a crease: a neighbour within \a reach
-  * whose normal differs from theirs by more than \a difference. */
-template <typename PointT> float
-rimCreaseShare (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
-                float reach, float difference)
+/** What the surface and its normals do around a rim, from one search per
+  * rim point (neighbours within the same reach). Each is a median over rim
+  * points, so that the few near a crease do not count. */
+struct RimStatistics
 {
+  /** RMS distance of the neighbours to their fitted plane: the noise. */
+  float noise = 0.f;
+  /** Median |n_p - n_q| over the neighbours: curvature within the reach and
+    * the noise of estimated normals (a crease shows in fewer than half of a
+    * point's neighbours, so it does not count). */
+  float normal_spread = 0.f;
+  /** RMS residual of a linear fit of the normals: what the first-order
+    * extension would extrapolate wrongly. Curvature fits; noise does not. */
+  float nonlinearity = 0.f;
+  /** Share of rim points with a neighbour's normal ~30 degrees away. */
+  float crease_share = 0.f;
+
+  /** Are the normals good enough for the first-order extension: linear
+    * within kFirstOrderMaxNormalNonlinearity, or within
+    * kSmoothRimMaxNonlinearity where the rim has no crease? */
+  bool
+  normalsAreLinear () const
+  {
+    return nonlinearity <= kFirstOrderMaxNormalNonlinearity ||
+           (nonlinearity <= kSmoothRimMaxNonlinearity && crease_share <= kSmoothRimMaxCreaseShare);
+  }
+};
+
+template <typename PointT> RimStatistics
+measureRimStatistics (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search,
+                      const pcl::Indices &rim, float reach)
+{
+  constexpr int kMinNeighbours = 5;
+  constexpr int kMinFitNeighbours = 8;  // a fit of 3 unknowns per component, with some to spare
+  std::vector<float> noise, spread, residual, scratch;
   std::size_t seen = 0, creased = 0;
   pcl::Indices found;
   std::vector<float> sqr_distances;
+  auto keep = [] (std::vector<float> &values, float value) {
+    if (std::isfinite (value))
+      values.push_back (value);
+  };
   for (const auto i : rim)
   {
-    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < 5)
+    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < kMinNeighbours)
       continue;
     ++seen;
-    const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
-    creased += std::any_of (found.begin (), found.end (), [&] (int q) {
-      return isOrientedPoint (cloud[q]) && (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > difference;
-    }) ? 1 : 0;
+    keep (noise, planeRms (cloud, found));
+    keep (spread, normalSpread (cloud, i, found, scratch));
+    creased += seesCrease (cloud, i, found) ? 1 : 0;
+    if (found.size () >= kMinFitNeighbours)
+      keep (residual, linearNormalResidual (cloud, i, found, reach, kMinFitNeighbours));
   }
-  return seen ? static_cast<float> (creased) / seen : 0.f;
-}
-
-/** How far the normals around a rim are from a linear field (what the
-  * first-order extension extrapolates): the median, over rim points, of the
-  * RMS residual of a least-squares fit n(u, v) = a + b u + c v over the
-  * neighbours within \a reach (u, v tangent coordinates). Curvature fits; the
-  * noise of normals estimated from noisy points does not. */
-template <typename PointT> float
-rimNormalNonlinearity (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search,
-                       const pcl::Indices &rim, float reach)
-{
-  constexpr int kMinNeighbours = 8;  // a fit of 3 unknowns per component, with some to spare
-  return medianOverRim (cloud, search, rim, reach, kMinNeighbours, [&] (int i, const pcl::Indices &found) {
-    const Eigen::Vector3f x = cloud[i].getVector3fMap ();
-    const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
-    const Eigen::Vector3f u = n.unitOrthogonal (), v = n.cross (u);
-    Eigen::MatrixXf a (found.size (), 3), normals (found.size (), 3);
-    Eigen::Index rows = 0;
-    for (const auto q : found)
-    {
-      if (!isOrientedPoint (cloud[q]))
-        continue;
-      const Eigen::Vector3f d = cloud[q].getVector3fMap () - x;
-      a.row (rows) << 1.f, d.dot (u) / reach, d.dot (v) / reach;
-      normals.row (rows++) = cloud[q].getNormalVector3fMap ().normalized ().transpose ();
-    }
-    if (rows < kMinNeighbours)
-      return std::numeric_limits<float>::quiet_NaN ();
-    const Eigen::MatrixXf fit = a.topRows (rows).colPivHouseholderQr ().solve (normals.topRows (rows));
-    return (a.topRows (rows) * fit - normals.topRows (rows)).norm () / std::sqrt (static_cast<float> (rows));
-  });
-}
-
-/** Are the rim's normals good enough for the first-order extension to
-  * extrapolate them: linear within kFirstOrderMaxNormalNonlinearity, or
-  * within kSmoothRimMaxNonlinearity where the rim has no crease? */
-template <typename PointT> bool
-normalsAreLinear (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
-                  float reach)
-{
-  const float nonlinearity = rimNormalNonlinearity (cloud, search, rim, reach);
-  return nonlinearity <= kFirstOrderMaxNormalNonlinearity ||
-         (nonlinearity <= kSmoothRimMaxNonlinearity &&
-          rimCreaseShare (cloud, search, rim, reach, kCreaseNormalDifference) <= kSmoothRimMaxCreaseShare);
+  RimStatistics statistics;
+  statistics.noise = median (noise);
+  statistics.normal_spread = median (spread);
+  statistics.nonlinearity = median (residual);
+  statistics.crease_share = seen ? static_cast<float> (creased) / seen : 0.f;
+  return statistics;
 }
 }  // namespace detail
 
@@ -564,10 +566,10 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   sampler.setInputCloud (surroundings.cloud);
   sampler.setSearchMethod (surroundings.search);
   sampler.setEquilibriumDistance (scale.d_eq);
-  report.noise = detail::rimNoise (*surroundings.cloud, *surroundings.search, surroundings.rim,
-                                   detail::kNoiseReachInSpacings * h);
-  report.normal_spread = detail::rimNormalSpread (*surroundings.cloud, *surroundings.search, surroundings.rim,
-                                                  detail::kNoiseReachInSpacings * h);
+  const detail::RimStatistics rim = detail::measureRimStatistics (
+      *surroundings.cloud, *surroundings.search, surroundings.rim, detail::kNoiseReachInSpacings * h);
+  report.noise = rim.noise;
+  report.normal_spread = rim.normal_spread;
   // Automatic sigma_n: g2 must tell a crease from what the normals do on one
   // smooth piece (its curvature, the noise of estimated normals). Narrower
   // than that, g2 starves eq. (1) of neighbours on curved or noisy rims and
@@ -581,9 +583,8 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   // extrapolates the noise, and the patch runs away. Noisy points with good
   // normals keep it: without it a sphere cap came out flat (max error 0.02,
   // the cap's sagitta, at noise 0.1 % of the diagonal; now 0.0011-0.0016).
-  report.first_order = first_order_ && (report.noise <= detail::kFirstOrderMaxNoiseInSpacings * h ||
-                                        detail::normalsAreLinear (*surroundings.cloud, *surroundings.search,
-                                                                  surroundings.rim, detail::kNoiseReachInSpacings * h));
+  report.first_order =
+      first_order_ && (report.noise <= detail::kFirstOrderMaxNoiseInSpacings * h || rim.normalsAreLinear ());
   sampler.setFirstOrder (report.first_order);
   sampler.setConstraintTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));

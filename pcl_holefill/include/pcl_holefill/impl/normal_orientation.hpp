@@ -60,8 +60,7 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
   if (usable.empty ())
     return 0;
   PointGrid grid (PointGrid::suggestCellSize (positions, k));
-  for (std::size_t i = 0; i < positions.size (); ++i)
-    grid.insert (positions[i], static_cast<int> (i));
+  grid.build (positions);
   auto normal = [&] (int local) { return cloud[usable[local]].getNormalVector3fMap (); };
 
   // How much two oriented points agree: the normals' dot product, plus, for

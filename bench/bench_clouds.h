@@ -11,8 +11,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <functional>
 #include <random>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace bench
 {
@@ -68,6 +76,85 @@ pclNormals (const Cloud::Ptr &cloud, int threads)
   estimation.setKSearch (16);
   pcl::PointCloud<pcl::Normal> normals;
   return seconds ([&] { estimation.compute (normals); }, 1);
+}
+
+/** A field of /proc/self/status, in kB. */
+inline long
+statusKb (const char *key)
+{
+  std::ifstream in ("/proc/self/status");
+  std::string line;
+  while (std::getline (in, line))
+    if (line.compare (0, std::strlen (key), key) == 0)
+      return std::strtol (line.c_str () + std::strlen (key), nullptr, 10);
+  return 0;
+}
+
+/** What one operation cost, measured in a process of its own. */
+struct Measured
+{
+  bool finished = false;  //!< ran to the end within the time limit
+  double seconds = 0.0;
+  double extra_mb = 0.0;  //!< peak resident memory above what the process held before
+  std::string result;     //!< what the operation returned (a digest of its output, figures)
+};
+
+/** Runs \a work in a forked child, killed after \a limit seconds, so that its
+  * peak memory can be read on its own (the peak is reset when the child
+  * starts: the data built before the fork do not count). The parent must not
+  * have run OpenMP before: libgomp's threads do not survive a fork, and the
+  * child would wait for them forever. */
+inline Measured
+inChildProcess (const std::function<std::string ()> &work, unsigned limit)
+{
+  int channel[2];
+  if (pipe (channel) != 0)
+    return {};
+  std::fflush (stdout);
+  const pid_t child = fork ();
+  if (child == 0)
+  {
+    close (channel[0]);
+    std::ofstream ("/proc/self/clear_refs") << "5";
+    const long base = statusKb ("VmRSS:");
+    alarm (limit);
+    const auto start = std::chrono::steady_clock::now ();
+    const std::string result = work ();
+    const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+    const std::string message =
+        std::to_string (seconds) + " " + std::to_string (statusKb ("VmHWM:") - base) + " " + result;
+    _exit (write (channel[1], message.data (), message.size ()) == static_cast<ssize_t> (message.size ()) ? 0 : 1);
+  }
+  close (channel[1]);
+  std::string message;
+  char buffer[256];
+  for (ssize_t got; (got = read (channel[0], buffer, sizeof (buffer))) > 0;)
+    message.append (buffer, static_cast<std::size_t> (got));
+  close (channel[0]);
+  int status = 0;
+  waitpid (child, &status, 0);
+  Measured measured;
+  long extra_kb = 0;
+  int consumed = 0;
+  if (WIFEXITED (status) && WEXITSTATUS (status) == 0 &&
+      std::sscanf (message.c_str (), "%lf %ld %n", &measured.seconds, &extra_kb, &consumed) == 2)
+  {
+    measured.finished = true;
+    measured.extra_mb = extra_kb / 1024.0;
+    measured.result = message.substr (static_cast<std::size_t> (consumed));
+  }
+  return measured;
+}
+
+/** FNV-1a over \a size bytes: tells two outputs apart without keeping both. */
+inline std::uint64_t
+digest (const void *data, std::size_t size)
+{
+  std::uint64_t hash = 1469598103934665603ull;
+  const auto *bytes = static_cast<const unsigned char *> (data);
+  for (std::size_t i = 0; i < size; ++i)
+    hash = (hash ^ bytes[i]) * 1099511628211ull;
+  return hash;
 }
 
 }  // namespace bench

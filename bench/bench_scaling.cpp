@@ -21,41 +21,14 @@
 #include <pcl/surface/mls.h>
 #include <pcl/surface/poisson.h>
 
-#include <chrono>
-#include <csignal>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
-#include <functional>
 #include <string>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 using Cloud = pcl_holefill::shapes::Cloud;
 
 namespace
 {
-struct Outcome
-{
-  bool finished = false;
-  double seconds = 0.0;
-  double extra_mb = 0.0;  //!< peak resident memory above the cloud's own
-};
-
-/** A field of /proc/self/status, in kB. */
-long
-statusKb (const char *key)
-{
-  std::ifstream in ("/proc/self/status");
-  std::string line;
-  while (std::getline (in, line))
-    if (line.compare (0, std::strlen (key), key) == 0)
-      return std::strtol (line.c_str () + std::strlen (key), nullptr, 10);
-  return 0;
-}
-
 template <typename Search>
 typename Search::Ptr
 kdtree ()
@@ -121,47 +94,15 @@ runOperation (const std::string &name, const Cloud::Ptr &cloud, int threads)
   }
 }
 
-/** Runs \a name on a fresh cloud of \a points in a child process, killed after \a limit seconds. */
-Outcome
+/** \a name on a fresh cloud of \a points, in a child process killed after \a limit seconds. */
+bench::Measured
 measure (const std::string &name, std::size_t points, int threads, unsigned limit)
 {
-  int channel[2];
-  if (pipe (channel) != 0)
-    return {};
-  const pid_t child = fork ();
-  if (child == 0)
-  {
-    close (channel[0]);
-    Cloud::Ptr cloud (new Cloud (bench::sphereWithTenHoles (points).kept));
-    // Forget the peak of building the cloud: from here on, only the operation's.
-    std::ofstream ("/proc/self/clear_refs") << "5";
-    const long base = statusKb ("VmRSS:");
-    alarm (limit);
-    const auto start = std::chrono::steady_clock::now ();
+  const Cloud::Ptr cloud (new Cloud (bench::sphereWithTenHoles (points).kept));
+  return bench::inChildProcess ([&] {
     runOperation (name, cloud, threads);
-    const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-    const long peak = statusKb ("VmHWM:");
-    char line[128];
-    const int n = std::snprintf (line, sizeof (line), "%f %ld\n", seconds, peak - base);
-    if (write (channel[1], line, n) != n)
-      _exit (1);
-    _exit (0);
-  }
-  close (channel[1]);
-  Outcome outcome;
-  char buffer[128] = {0};
-  const ssize_t got = read (channel[0], buffer, sizeof (buffer) - 1);
-  close (channel[0]);
-  int status = 0;
-  waitpid (child, &status, 0);
-  long extra_kb = 0;
-  if (got > 0 && WIFEXITED (status) && WEXITSTATUS (status) == 0 &&
-      std::sscanf (buffer, "%lf %ld", &outcome.seconds, &extra_kb) == 2)
-  {
-    outcome.finished = true;
-    outcome.extra_mb = extra_kb / 1024.0;
-  }
-  return outcome;
+    return std::string ();
+  }, limit);
 }
 }  // namespace
 
@@ -188,7 +129,7 @@ main (int argc, char **argv)
     double normals = 0.0;
     for (const char *op : operations)
     {
-      const Outcome o = measure (op, n, threads, limit);
+      const bench::Measured o = measure (op, n, threads, limit);
       if (std::string (op) == "NormalEstimationOMP")
         normals = o.seconds;
       if (std::string (op) == "pcl_holefill")

@@ -6,7 +6,7 @@
 
 #include "normal_estimation.h"
 
-#include <pcl_holefill/voxel_hash_search.h>
+#include <pcl/search/kdtree.h>
 
 #include <pcl/common/io.h>
 #include <pcl/conversions.h>
@@ -172,8 +172,11 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   const std::size_t step = rows.point_step;
   const std::size_t added = filtered.size () - input_points;
   rows.data.resize ((input_points + added) * step);
-  // Other fields of a filled point: those of its nearest input point.
-  pcl_holefill::VoxelHashSearch<pcl::PointNormal> search;
+  // Other fields of a filled point: those of its nearest input point. A
+  // k-d tree, because that point is up to a hole's radius away: a grid
+  // tuned to the sampling pitch would scan the whole cloud for every point
+  // deep in a large hole (24 s for 21,000 filled points in 225,000).
+  pcl::search::KdTree<pcl::PointNormal> search;
   search.setInputCloud (prepared.points);
   const std::uint32_t xyz[3] = {offsetOf (rows, "x"), offsetOf (rows, "y"), offsetOf (rows, "z")};
   const std::uint32_t nxyz[3] = {offsetOf (rows, "normal_x"), offsetOf (rows, "normal_y"), offsetOf (rows, "normal_z")};

@@ -72,6 +72,36 @@ TEST (PointGrid, RadiusMatchesBruteForceAndGrows)
                             [&] (const auto &n) { return n.id == static_cast<int> (points.size () - 1); }));
 }
 
+TEST (PointGrid, StrayPointsAndLargeBallsMatchBruteForce)
+{
+  // A surface and stray points far off it: a stray point's neighbours lie
+  // beyond the rings nearestK walks, and a ball of the stray points' own
+  // scale spans far more cells than the grid holds. Both take the
+  // occupied-cell paths; the answers must stay exact.
+  auto points = randomPoints (3000, 3);
+  std::mt19937 rng (4);
+  std::uniform_real_distribution<float> far (-40.f, 40.f);
+  for (int i = 0; i < 20; ++i)
+    points.emplace_back (far (rng), far (rng), far (rng));
+  PointGrid grid (PointGrid::suggestCellSize (points, 8));
+  grid.build (points);
+  std::vector<PointGrid::Neighbour> found;
+  for (std::size_t s = 3000; s < points.size (); ++s)
+  {
+    const auto truth = bruteForceSqrDistances (points, points[s]);
+    grid.nearestK (points[s], 8, found);
+    ASSERT_EQ (found.size (), 8u);
+    for (int k = 0; k < 8; ++k)
+      EXPECT_FLOAT_EQ (found[k].sqr_distance, truth[k]);
+    for (const float radius : {3.f, 30.f, 200.f})
+    {
+      grid.withinRadius (points[s], radius, found);
+      const auto inside = std::count_if (truth.begin (), truth.end (), [&] (float d) { return d <= radius * radius; });
+      EXPECT_EQ (static_cast<long> (found.size ()), inside) << "radius " << radius;
+    }
+  }
+}
+
 TEST (PointGrid, IgnoresNonFiniteAndEmptyQueries)
 {
   PointGrid grid (0.1f);

@@ -48,6 +48,14 @@ keepNearest (std::vector<PointGrid::Neighbour> &neighbours, std::size_t count)
   }
   std::sort (neighbours.begin (), neighbours.end (), lessByDistance);
 }
+
+/** One cell coordinate of a key made by PointGrid::keyOf (\a shift 42, 21 or 0). */
+int
+decode (std::uint64_t key, int shift)
+{
+  return static_cast<int> ((key >> shift) & 0x1FFFFFULL) - kCoordinateBias;
+}
+
 }  // namespace
 
 PointGrid::PointGrid (float cell_size) { reset (cell_size); }
@@ -272,14 +280,54 @@ PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour>
       }
     }
   }
-  // Isolated query: scan everything once (bounded by the grid's size).
-  result.clear ();
+  nearestKAmongCells (query, static_cast<std::size_t> (k), result);
+}
+
+void
+PointGrid::nearestKAmongCells (const Eigen::Vector3f &query, std::size_t k, std::vector<Neighbour> &result) const
+{
+  // An isolated query (a stray point far from the surface): the occupied
+  // cells nearest first, until the k-th point found is nearer than the next
+  // cell. Scanning every point instead made a thousand stray points cost a
+  // thousand passes over the cloud.
+  std::vector<std::pair<float, int>> cells (cell_keys_.size ());
   for (std::size_t c = 0; c < cell_keys_.size (); ++c)
-    cell (static_cast<int> (c)).forEach ([&] (const Entry &e) {
+  {
+    const int coordinate[3] = {decode (cell_keys_[c], 42), decode (cell_keys_[c], 21), decode (cell_keys_[c], 0)};
+    float sqr = 0.f;
+    for (int d = 0; d < 3; ++d)
+    {
+      // The cell's box, widened a little against the rounding of floor (v / cell).
+      const float lo = (coordinate[d] - 1e-3f) * cell_size_;
+      const float gap = std::max ({0.f, lo - query (d), query (d) - (lo + 1.002f * cell_size_)});
+      sqr += gap * gap;
+    }
+    cells[c] = {sqr, static_cast<int> (c)};
+  }
+  std::sort (cells.begin (), cells.end ());
+  result.clear ();
+  // A max-heap of the k nearest so far.
+  for (const auto &[cell_sqr, c] : cells)
+  {
+    if (result.size () >= k && result.front ().sqr_distance <= cell_sqr)
+      break;
+    cell (c).forEach ([&] (const Entry &e) {
       const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
-      result.push_back ({e.id, dx * dx + dy * dy + dz * dz});
+      const Neighbour found{e.id, dx * dx + dy * dy + dz * dz};
+      if (result.size () < k)
+      {
+        result.push_back (found);
+        std::push_heap (result.begin (), result.end (), lessByDistance);
+      }
+      else if (lessByDistance (found, result.front ()))
+      {
+        std::pop_heap (result.begin (), result.end (), lessByDistance);
+        result.back () = found;
+        std::push_heap (result.begin (), result.end (), lessByDistance);
+      }
     });
-  keepNearest (result, static_cast<std::size_t> (k));
+  }
+  keepNearest (result, k);
 }
 
 void
@@ -361,15 +409,48 @@ PointGrid::withinRadius (const Eigen::Vector3f &query, float radius, std::vector
   result.clear ();
   if (!(radius > 0.f) || size_ == 0 || !query.allFinite ())
     return;
-  int cx, cy, cz;
-  cellCoordinates (query, cx, cy, cz);
+  int centre[3];
+  cellCoordinates (query, centre[0], centre[1], centre[2]);
   const float sqr = radius * radius;
-  const int rings = static_cast<int> (std::ceil (radius * inverse_cell_size_));
-  int span = 0;
+  const int rings = static_cast<int> (std::min (std::ceil (radius * inverse_cell_size_), 1e6f));
+  // Cells of the ball's box that the occupied range holds.
+  int lo[3], hi[3];
+  double box_cells = 1.0;
   for (int d = 0; d < 3; ++d)
-    span = std::max (span, max_cell_[d] - min_cell_[d] + 1);
-  for (int ring = 0; ring <= std::min (rings, span + 1); ++ring)
-    collectShell (cx, cy, cz, ring, query, sqr, result);
+  {
+    lo[d] = std::max (centre[d] - rings, min_cell_[d]);
+    hi[d] = std::min (centre[d] + rings, max_cell_[d]);
+    box_cells *= std::max (0, hi[d] - lo[d] + 1);
+  }
+  if (box_cells > static_cast<double> (cell_keys_.size ()))
+  {
+    // A ball much larger than the cells (an isolated point asking for its
+    // own, large, scale): looking at every occupied cell once is cheaper
+    // than visiting the empty ones of the ball (a stray point 5 units off a
+    // 1,000,000-point cloud would visit 10^10 of them).
+    for (std::size_t c = 0; c < cell_keys_.size (); ++c)
+    {
+      const int coordinate[3] = {decode (cell_keys_[c], 42), decode (cell_keys_[c], 21), decode (cell_keys_[c], 0)};
+      if (coordinate[0] < lo[0] || coordinate[0] > hi[0] || coordinate[1] < lo[1] || coordinate[1] > hi[1] ||
+          coordinate[2] < lo[2] || coordinate[2] > hi[2])
+        continue;
+      cell (static_cast<int> (c)).forEach ([&] (const Entry &e) {
+        const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 <= sqr)
+          result.push_back ({e.id, d2});
+      });
+    }
+  }
+  else
+  {
+    // Beyond the farthest occupied coordinate every shell is empty.
+    int farthest = 0;
+    for (int d = 0; d < 3; ++d)
+      farthest = std::max ({farthest, std::abs (centre[d] - min_cell_[d]), std::abs (centre[d] - max_cell_[d])});
+    for (int ring = 0; ring <= std::min (rings, farthest); ++ring)
+      collectShell (centre[0], centre[1], centre[2], ring, query, sqr, result);
+  }
   if (max_results > 0)
     keepNearest (result, max_results);
 }

@@ -146,6 +146,12 @@ private:
   collectShell (int cx, int cy, int cz, int ring, const Eigen::Vector3f &query, float max_sqr,
                 std::vector<Neighbour> &out) const;
 
+  /** The k nearest points to \a query, sorted, visiting the occupied cells
+    * nearest first: for queries farther from the points than the rings of
+    * nearestK reach. */
+  void
+  nearestKAmongCells (const Eigen::Vector3f &query, std::size_t k, std::vector<Neighbour> &result) const;
+
   float cell_size_;
   float inverse_cell_size_;
   std::size_t size_ = 0;

@@ -456,7 +456,7 @@ PointGrid::withinRadius (const Eigen::Vector3f &query, float radius, std::vector
 }
 
 std::vector<int>
-PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size)
+PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size, int threads)
 {
   // Spread the low 21 bits of v so that two zero bits follow each one.
   const auto spread = [] (std::uint64_t v) {
@@ -470,8 +470,10 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
   };
   PointGrid frame (cell_size);
   std::vector<std::pair<std::uint64_t, int>> keyed (points.size ());
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (points.size ());
   // Within a cell, equal positions end up next to each other (see below).
-  for (std::size_t i = 0; i < points.size (); ++i)
+#pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
   {
     std::uint64_t key = std::numeric_limits<std::uint64_t>::max ();
     if (points[i].allFinite ())
@@ -484,7 +486,7 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
     }
     keyed[i] = {key, static_cast<int> (i)};
   }
-  std::sort (keyed.begin (), keyed.end (), [&points] (const auto &a, const auto &b) {
+  const auto before = [&points] (const auto &a, const auto &b) {
     if (a.first != b.first)
       return a.first < b.first;
     const Eigen::Vector3f &p = points[a.second], &q = points[b.second];
@@ -495,7 +497,18 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
     if (p.z () != q.z ())
       return p.z () < q.z ();
     return a.second < b.second;
-  });
+  };
+  // Runs sorted side by side, then merged: a total order, so the result is
+  // the one sort of the whole would give.
+  const int runs = static_cast<int> (std::clamp<std::ptrdiff_t> (threads, 1, std::max<std::ptrdiff_t> (1, n / 65536)));
+  std::vector<std::ptrdiff_t> bounds (runs + 1);
+  for (int r = 0; r <= runs; ++r)
+    bounds[r] = n * r / runs;
+#pragma omp parallel for num_threads(runs) schedule(static, 1)
+  for (int r = 0; r < runs; ++r)
+    std::sort (keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], before);
+  for (int r = 1; r < runs; ++r)
+    std::inplace_merge (keyed.begin (), keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], before);
   std::vector<int> order (points.size ());
   for (std::size_t i = 0; i < keyed.size (); ++i)
     order[i] = keyed[i].second;

@@ -88,9 +88,10 @@ public:
     * Morton (Z-order) curve over cells of edge \a cell_size: neighbours in
     * space become neighbours in memory, which is what makes a pass over a
     * large cloud fast. Non-finite points come last; points at the same
-    * position come one after the other, in index order. */
+    * position come one after the other, in index order. The order is the
+    * same for any number of \a threads (a total order: ties go by index). */
   static std::vector<int>
-  spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size);
+  spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_size, int threads = 1);
 
 private:
   struct Entry

@@ -84,7 +84,8 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     for (const auto i : *usable_)
       unordered.push_back ((*input_)[i].getVector3fMap ());
     cell = PointGrid::suggestCellSize (unordered, k_);
-    const std::vector<int> order = PointGrid::spatialOrder (unordered, cell);
+    const std::vector<int> order =
+        PointGrid::spatialOrder (unordered, cell, static_cast<int> (resolveThreadCount (threads_)));
     // Repeated positions would fill the k nearest with copies of one
     // neighbour: only the first of each is used (spatialOrder puts them together).
     pcl::IndicesPtr ordered (new pcl::Indices);
@@ -105,14 +106,16 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     usable_ = ordered;
   }
   local_of_.assign (input_->size (), -1);
-  positions_.reserve (usable_->size ());
-  normals_.reserve (usable_->size ());
-  for (std::size_t i = 0; i < usable_->size (); ++i)
+  positions_.resize (usable_->size ());
+  normals_.resize (usable_->size ());
+  // Each usable index once: the writes never meet.
+#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(static)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (usable_->size ()); ++i)
   {
     const PointT &p = (*input_)[(*usable_)[i]];
     local_of_[(*usable_)[i]] = static_cast<int> (i);
-    positions_.push_back (p.getVector3fMap ());
-    normals_.push_back (p.getNormalVector3fMap ().normalized ());
+    positions_[i] = p.getVector3fMap ();
+    normals_[i] = p.getNormalVector3fMap ().normalized ();
   }
   if (search_)
     search_->setInputCloud (input_, usable_);

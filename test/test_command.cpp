@@ -18,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -156,6 +157,57 @@ TEST_F (Command, ReadsEveryPcdAndPlyEncoding)
     }
     for (std::size_t i = coloured.size (); i < out.size (); ++i)
       EXPECT_LT (shapes::cube ().distance (out[i].getVector3fMap ().cast<double> ()), 0.0046) << name;
+  }
+}
+
+TEST_F (Command, ReadsAPlyWhoseFacesComeBeforeItsVertices)
+{
+  // PLY allows elements in any order: faces (with their lists) and an edge
+  // before the vertices, an element after them. Ascii and binary.
+  const auto &kept = cut_.kept;
+  for (const bool ascii : {true, false})
+  {
+    std::ofstream out (path ("faces_first.ply"), std::ios::binary);
+    out << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\n"
+        << "element face 2\nproperty list uchar int vertex_indices\nelement edge 1\nproperty int a\n"
+        << "property int b\nelement vertex " << kept.size () << "\nproperty float x\nproperty float y\n"
+        << "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+        << "element material 1\nproperty uchar red\nend_header\n";
+    const auto binary = [&out] (const auto &value) { out.write (reinterpret_cast<const char *> (&value), sizeof (value)); };
+    if (ascii)
+      out << "3 0 1 2\n4 0 1 2 3\n0 1\n";
+    else
+    {
+      for (const int n : {3, 4})
+      {
+        binary (static_cast<std::uint8_t> (n));
+        for (int i = 0; i < n; ++i)
+          binary (i);
+      }
+      binary (0);
+      binary (1);
+    }
+    for (const auto &p : kept)
+    {
+      const float values[6] = {p.x, p.y, p.z, p.normal_x, p.normal_y, p.normal_z};
+      if (ascii)
+        out << std::setprecision (9) << values[0] << ' ' << values[1] << ' ' << values[2] << ' ' << values[3] << ' '
+            << values[4] << ' ' << values[5] << '\n';
+      else
+        for (const float v : values)
+          binary (v);
+    }
+    if (ascii)
+      out << "255\n";
+    else
+      binary (static_cast<std::uint8_t> (255));
+    out.close ();
+    ASSERT_EQ (run (path ("faces_first.ply") + " " + path ("out.pcd")), 0) << stderrText ();
+    pcl::PointCloud<pcl::PointNormal> filled;
+    ASSERT_EQ (pcl::io::loadPCDFile (path ("out.pcd"), filled), 0);
+    ASSERT_GT (filled.size (), kept.size ()) << (ascii ? "ascii" : "binary");
+    for (std::size_t i = 0; i < kept.size (); ++i)
+      ASSERT_EQ (filled[i].getVector3fMap (), kept[i].getVector3fMap ()) << i;
   }
 }
 

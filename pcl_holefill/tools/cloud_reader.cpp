@@ -166,16 +166,14 @@ setShape (pcl::PCLPointCloud2 &cloud, std::uint64_t width, std::uint64_t height,
   cloud.is_dense = false;
 }
 
+using PcdEntries = std::map<std::string, std::vector<std::string>>;
+
+/** The header's lines by keyword; each keyword known and given once. */
 bool
-parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+pcdEntries (const std::vector<std::string> &lines, PcdEntries &entries, std::string &reason)
 {
-  std::vector<std::string> lines;
-  std::size_t body = 0;
-  if (!splitHeader (bytes, "DATA", lines, body, reason))
-    return false;
   static const char *const known[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT", "WIDTH",
                                       "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-  std::map<std::string, std::vector<std::string>> entries;
   for (const auto &line : lines)
   {
     const auto w = words (line);
@@ -199,6 +197,22 @@ parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     reason = "VERSION must be 0.7";
     return false;
   }
+  return true;
+}
+
+/** One FIELDS entry: its type and room in a point ("_" is padding). */
+struct PcdField
+{
+  std::uint8_t datatype = 0;
+  std::uint64_t size = 0;   //!< bytes of one value
+  std::uint64_t count = 0;  //!< values
+};
+
+/** FIELDS, SIZE, TYPE and COUNT into the cloud's fields and their layout. */
+bool
+pcdFields (PcdEntries &entries, pcl::PCLPointCloud2 &cloud, std::vector<PcdField> &layout,
+           std::uint64_t &point_step, std::string &reason)
+{
   const auto &names = entries["FIELDS"], &sizes = entries["SIZE"], &types = entries["TYPE"];
   auto counts = entries["COUNT"];
   if (counts.empty ())
@@ -210,13 +224,12 @@ parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     return false;
   }
   cloud = pcl::PCLPointCloud2 ();
-  std::uint64_t point_step = 0;
-  std::vector<std::uint64_t> field_bytes;  // per FIELDS entry, padding included
+  point_step = 0;
   for (std::size_t i = 0; i < names.size (); ++i)
   {
-    std::uint64_t size = 0, count = 0;
-    const std::uint8_t datatype = toCount (sizes[i], size) ? pcdDatatype (types[i], size) : 0;
-    if (!datatype || !toCount (counts[i], count) || count == 0 || count > 100000 ||
+    PcdField f;
+    f.datatype = toCount (sizes[i], f.size) ? pcdDatatype (types[i], f.size) : 0;
+    if (!f.datatype || !toCount (counts[i], f.count) || f.count == 0 || f.count > 100000 ||
         (names[i] != "_" && !plainName (names[i])))
     {
       reason = "field '" + names[i].substr (0, 20) + "' has a bad name, SIZE, TYPE or COUNT";
@@ -227,14 +240,23 @@ parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
       pcl::PCLPointField field;
       field.name = names[i];
       field.offset = static_cast<std::uint32_t> (point_step);
-      field.datatype = datatype;
-      field.count = static_cast<std::uint32_t> (count);
+      field.datatype = f.datatype;
+      field.count = static_cast<std::uint32_t> (f.count);
       cloud.fields.push_back (field);
     }
-    field_bytes.push_back (size * count);
-    point_step += size * count;
+    layout.push_back (f);
+    point_step += f.size * f.count;
   }
-  std::uint64_t width = 0, height = 1, points = 0;
+  return true;
+}
+
+/** WIDTH, HEIGHT, POINTS and VIEWPOINT: the number of points. */
+bool
+pcdShape (PcdEntries &entries, std::uint64_t point_step, std::uint64_t &width, std::uint64_t &height,
+          std::string &reason)
+{
+  std::uint64_t points = 0;
+  height = 1;
   const auto &w = entries["WIDTH"], &h = entries["HEIGHT"], &p = entries["POINTS"], &viewpoint = entries["VIEWPOINT"];
   if (w.size () != 1 || !toCount (w[0], width) || (h.size () == 1 && !toCount (h[0], height)) || h.size () > 1 ||
       (p.size () == 1 && (!toCount (p[0], points) || points != width * height)) || p.size () > 1 ||
@@ -243,13 +265,97 @@ parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     reason = "WIDTH, HEIGHT, POINTS or VIEWPOINT are missing or disagree";
     return false;
   }
-  points = width * height;
+  return true;
+}
+
+/** DATA binary_compressed: LZF, stored field by field (all points' first
+  * field, then the second ...). */
+bool
+readPcdCompressed (const std::string &bytes, std::size_t body, const std::vector<PcdField> &layout,
+                   pcl::PCLPointCloud2 &cloud, std::uint64_t points, std::string &reason)
+{
+  const std::uint64_t available = bytes.size () - body, point_step = cloud.point_step;
+  std::uint32_t packed[2] = {0, 0};  // compressed, uncompressed
+  if (available < sizeof (packed))
+  {
+    reason = "the compressed data is missing";
+    return false;
+  }
+  std::memcpy (packed, bytes.data () + body, sizeof (packed));
+  if (available - sizeof (packed) < packed[0] || packed[1] != points * point_step)
+  {
+    reason = "the compressed data does not match the header";
+    return false;
+  }
+  std::vector<char> plain (packed[1]);
+  if (packed[1] > 0 &&
+      pcl::lzfDecompress (bytes.data () + body + sizeof (packed), packed[0], plain.data (), packed[1]) != packed[1])
+  {
+    reason = "the compressed data does not decompress";
+    return false;
+  }
+  cloud.data.resize (points * point_step);
+  std::uint64_t source = 0, offset = 0;
+  for (const auto &field : layout)
+  {
+    const std::uint64_t bytes_of_field = field.size * field.count;
+    for (std::uint64_t k = 0; k < points; ++k)
+      std::memcpy (cloud.data.data () + k * point_step + offset, plain.data () + source + k * bytes_of_field,
+                   bytes_of_field);
+    source += points * bytes_of_field;
+    offset += bytes_of_field;
+  }
+  return true;
+}
+
+/** DATA ascii: one line a point, every value of every field. */
+bool
+readPcdAscii (const std::string &bytes, std::size_t body, const std::vector<PcdField> &layout,
+              pcl::PCLPointCloud2 &cloud, std::uint64_t points, std::string &reason)
+{
+  const std::uint64_t point_step = cloud.point_step;
+  cloud.data.assign (points * point_step, 0);
+  std::istringstream text (bytes.substr (body));
+  std::string line;
+  for (std::uint64_t k = 0; k < points; ++k)
+  {
+    if (!std::getline (text, line))
+    {
+      reason = "the file has fewer lines than the " + std::to_string (points) + " points its header announces";
+      return false;
+    }
+    const auto values = words (line);
+    std::size_t v = 0;
+    std::uint64_t offset = 0;
+    for (const auto &field : layout)
+      for (std::uint64_t c = 0; c < field.count; ++c, ++v, offset += field.size)
+        if (v >= values.size () || !storeNumber (values[v], field.datatype, cloud.data.data () + k * point_step + offset))
+        {
+          reason = "point " + std::to_string (k) + " has a missing or malformed value";
+          return false;
+        }
+  }
+  return true;
+}
+
+bool
+parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+{
+  std::vector<std::string> lines;
+  std::size_t body = 0;
+  PcdEntries entries;
+  std::vector<PcdField> layout;
+  std::uint64_t point_step = 0, width = 0, height = 1;
+  if (!splitHeader (bytes, "DATA", lines, body, reason) || !pcdEntries (lines, entries, reason) ||
+      !pcdFields (entries, cloud, layout, point_step, reason) ||
+      !pcdShape (entries, point_step, width, height, reason))
+    return false;
+  const std::uint64_t points = width * height;
   const auto &data = entries["DATA"];
-  const std::uint64_t available = bytes.size () - body;
   setShape (cloud, width, height, static_cast<std::uint32_t> (point_step));
   if (data.size () == 1 && data[0] == "binary")
   {
-    if (available < points * point_step)
+    if (bytes.size () - body < points * point_step)
     {
       reason = "the file is shorter than the " + std::to_string (points) + " points its header announces";
       return false;
@@ -258,73 +364,16 @@ parsePcd (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     return true;
   }
   if (data.size () == 1 && data[0] == "binary_compressed")
-  {
-    std::uint32_t packed[2] = {0, 0};  // compressed, uncompressed
-    if (available < sizeof (packed))
-    {
-      reason = "the compressed data is missing";
-      return false;
-    }
-    std::memcpy (packed, bytes.data () + body, sizeof (packed));
-    if (available - sizeof (packed) < packed[0] || packed[1] != points * point_step)
-    {
-      reason = "the compressed data does not match the header";
-      return false;
-    }
-    std::vector<char> plain (packed[1]);
-    if (packed[1] > 0 &&
-        pcl::lzfDecompress (bytes.data () + body + sizeof (packed), packed[0], plain.data (), packed[1]) != packed[1])
-    {
-      reason = "the compressed data does not decompress";
-      return false;
-    }
-    // Stored field by field (all points' first field, then the second...).
-    cloud.data.resize (points * point_step);
-    std::uint64_t source = 0, offset = 0;
-    for (const std::uint64_t bytes_of_field : field_bytes)
-    {
-      for (std::uint64_t k = 0; k < points; ++k)
-        std::memcpy (cloud.data.data () + k * point_step + offset, plain.data () + source + k * bytes_of_field,
-                     bytes_of_field);
-      source += points * bytes_of_field;
-      offset += bytes_of_field;
-    }
-    return true;
-  }
+    return readPcdCompressed (bytes, body, layout, cloud, points, reason);
   if (data.size () == 1 && data[0] == "ascii")
-  {
-    cloud.data.assign (points * point_step, 0);
-    std::istringstream text (bytes.substr (body));
-    std::string line;
-    for (std::uint64_t k = 0; k < points; ++k)
-    {
-      if (!std::getline (text, line))
-      {
-        reason = "the file has fewer lines than the " + std::to_string (points) + " points its header announces";
-        return false;
-      }
-      const auto values = words (line);
-      std::size_t v = 0;
-      std::uint64_t offset = 0;
-      for (std::size_t f = 0; f < names.size (); ++f)
-      {
-        std::uint64_t size = 0, count = 0;
-        toCount (sizes[f], size);
-        toCount (counts[f], count);
-        for (std::uint64_t c = 0; c < count; ++c, ++v, offset += size)
-          if (v >= values.size () ||
-              !storeNumber (values[v], pcdDatatype (types[f], size), cloud.data.data () + k * point_step + offset))
-          {
-            reason = "point " + std::to_string (k) + " has a missing or malformed value";
-            return false;
-          }
-      }
-    }
-    return true;
-  }
+    return readPcdAscii (bytes, body, layout, cloud, points, reason);
   reason = "DATA must be ascii, binary or binary_compressed";
   return false;
 }
+
+// Bounds on what a PLY header may announce (beyond kMaxPoints records).
+constexpr std::size_t kMaxPlyElements = 64;
+constexpr double kMaxPlyListLength = 1000.0;
 
 struct PlyProperty
 {
@@ -376,12 +425,47 @@ readBinary (const std::string &bytes, std::size_t &at, std::uint8_t datatype, bo
   return true;
 }
 
+struct PlyElement
+{
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader
+{
+  bool ascii = false;
+  bool big_endian = false;
+  std::vector<PlyElement> elements;
+  std::size_t body = 0;  //!< offset of the first record
+};
+
+/** A "property ..." line of the header. */
 bool
-parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+parsePlyProperty (const std::vector<std::string> &w, PlyProperty &property)
+{
+  if (w.size () == 3 && plyDatatype (w[1]) && plainName (w[2]))
+  {
+    property.datatype = plyDatatype (w[1]);
+    property.name = w[2];
+    return true;
+  }
+  if (w.size () == 5 && w[1] == "list" && plyDatatype (w[2]) && plyDatatype (w[3]) && plainName (w[4]))
+  {
+    property.count_type = plyDatatype (w[2]);
+    property.datatype = plyDatatype (w[3]);
+    property.name = w[4];
+    return true;
+  }
+  return false;
+}
+
+/** The header: format and every element with its properties, in file order. */
+bool
+parsePlyHeader (const std::string &bytes, PlyHeader &header, std::string &reason)
 {
   std::vector<std::string> lines;
-  std::size_t body = 0;
-  if (!splitHeader (bytes, "end_header", lines, body, reason))
+  if (!splitHeader (bytes, "end_header", lines, header.body, reason))
     return false;
   if (lines.empty () || lines[0] != "ply")
   {
@@ -389,69 +473,140 @@ parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     return false;
   }
   std::string format;
-  std::uint64_t vertices = 0;
-  int element = -1;  // index of the current element; only the first (vertex) is read
-  std::vector<PlyProperty> properties;
   for (std::size_t i = 1; i + 1 < lines.size (); ++i)
   {
     const auto w = words (lines[i]);
+    PlyProperty property;
     if (w.empty () || w[0] == "comment" || w[0] == "obj_info")
       continue;
     if (w[0] == "format" && w.size () == 3 && w[2] == "1.0")
       format = w[1];
     else if (w[0] == "element" && w.size () == 3)
     {
-      std::uint64_t count = 0;
-      if (!plainName (w[1]) || !toCount (w[2], count) || count > kMaxPoints)
+      PlyElement element;
+      element.name = w[1];
+      if (!plainName (w[1]) || !toCount (w[2], element.count) || element.count > kMaxPoints ||
+          header.elements.size () >= kMaxPlyElements)
       {
         reason = "bad element line '" + lines[i].substr (0, 40) + "'";
         return false;
       }
-      if (++element == 0)
-      {
-        if (w[1] != "vertex")
-        {
-          reason = "the first element must be 'vertex'";
-          return false;
-        }
-        vertices = count;
-      }
+      header.elements.push_back (element);
     }
-    else if (w[0] == "property" && element >= 0)
-    {
-      PlyProperty property;
-      if (w.size () == 3 && plyDatatype (w[1]) && plainName (w[2]))
-      {
-        property.datatype = plyDatatype (w[1]);
-        property.name = w[2];
-      }
-      else if (w.size () == 5 && w[1] == "list" && plyDatatype (w[2]) && plyDatatype (w[3]) && plainName (w[4]))
-      {
-        property.count_type = plyDatatype (w[2]);
-        property.datatype = plyDatatype (w[3]);
-        property.name = w[4];
-      }
-      else
-      {
-        reason = "bad property line '" + lines[i].substr (0, 40) + "'";
-        return false;
-      }
-      if (element == 0)
-        properties.push_back (property);
-    }
+    else if (w[0] == "property" && !header.elements.empty () && parsePlyProperty (w, property))
+      header.elements.back ().properties.push_back (property);
     else
     {
-      reason = "unknown header line '" + lines[i].substr (0, 40) + "'";
+      reason = (w[0] == "property" ? "bad property line '" : "unknown header line '") + lines[i].substr (0, 40) + "'";
       return false;
     }
   }
-  const bool ascii = format == "ascii", big_endian = format == "binary_big_endian";
-  if (!ascii && !big_endian && format != "binary_little_endian")
+  header.ascii = format == "ascii";
+  header.big_endian = format == "binary_big_endian";
+  if (!header.ascii && !header.big_endian && format != "binary_little_endian")
   {
     reason = "unknown format '" + format + "'";
     return false;
   }
-  // The cloud's fields: the vertex's scalar properties as floats, colours packed into rgb.
+  return true;
+}
+
+/** Reads a PLY body record by record: values from the bytes (binary) or
+  * from the words of one line per record (ascii). */
+class PlyBody
+{
+public:
+  PlyBody (const std::string &bytes, const PlyHeader &header)
+    : bytes_ (bytes), header_ (header), at_ (header.body)
+  {
+  }
+
+  /** Starts the next record (ascii: reads its line). */
+  bool
+  nextRecord ()
+  {
+    if (!header_.ascii)
+      return true;
+    if (at_ >= bytes_.size ())
+      return false;
+    std::size_t end = bytes_.find ('\n', at_);
+    if (end == std::string::npos)
+      end = bytes_.size ();
+    values_ = words (bytes_.substr (at_, end - at_));
+    at_ = end + 1;
+    next_word_ = 0;
+    return true;
+  }
+
+  /** One value of the current record. */
+  bool
+  value (std::uint8_t datatype, double &out)
+  {
+    if (!header_.ascii)
+      return readBinary (bytes_, at_, datatype, header_.big_endian, out);
+    if (next_word_ >= values_.size ())
+      return false;
+    const std::string &word = values_[next_word_++];
+    char *end = nullptr;
+    out = std::strtod (word.c_str (), &end);
+    return end != word.c_str () && *end == '\0';
+  }
+
+  /** Reads past a list property's items (\a length read already). */
+  bool
+  skipList (const PlyProperty &property, double length)
+  {
+    if (!(length >= 0.0 && length <= kMaxPlyListLength))
+      return false;
+    double ignored = 0.0;
+    for (int item = 0; item < static_cast<int> (length); ++item)
+      if (!value (property.datatype, ignored))
+        return false;
+    return true;
+  }
+
+  /** Reads past every record of \a element (one that comes before the vertices). */
+  bool
+  skip (const PlyElement &element)
+  {
+    for (std::uint64_t k = 0; k < element.count; ++k)
+    {
+      if (!nextRecord ())
+        return false;
+      for (const auto &property : element.properties)
+      {
+        double value_read = 0.0;
+        if (!value (property.count_type ? property.count_type : property.datatype, value_read) ||
+            (property.count_type && !skipList (property, value_read)))
+          return false;
+      }
+    }
+    return true;
+  }
+
+private:
+  const std::string &bytes_;
+  const PlyHeader &header_;
+  std::size_t at_;
+  std::vector<std::string> values_;
+  std::size_t next_word_ = 0;
+};
+
+/** Where each vertex property goes in the cloud's point. */
+struct PlyLayout
+{
+  std::vector<int> slot;  //!< property -> float slot, -1 if not stored
+  int colour[3] = {-1, -1, -1};
+  bool packed_rgb = false;
+  std::uint32_t rgb_offset = 0;
+  std::uint32_t point_step = 0;
+};
+
+/** The cloud's fields: the vertex's scalar properties as floats, colours packed into rgb. */
+bool
+plyLayout (const std::vector<PlyProperty> &properties, pcl::PCLPointCloud2 &cloud, PlyLayout &layout,
+           std::string &reason)
+{
   auto index_of = [&properties] (const std::string &name) {
     for (std::size_t i = 0; i < properties.size (); ++i)
       if (properties[i].name == name && properties[i].count_type == 0)
@@ -463,129 +618,129 @@ parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &rea
     reason = "the vertex element has no x, y and z";
     return false;
   }
-  const int colour[3] = {index_of ("red"), index_of ("green"), index_of ("blue")};
-  const bool packed_rgb = colour[0] >= 0 && colour[1] >= 0 && colour[2] >= 0 &&
-                          properties[colour[0]].datatype == pcl::PCLPointField::UINT8 &&
-                          properties[colour[1]].datatype == pcl::PCLPointField::UINT8 &&
-                          properties[colour[2]].datatype == pcl::PCLPointField::UINT8;
+  const char *colours[3] = {"red", "green", "blue"};
+  layout.packed_rgb = true;
+  for (int c = 0; c < 3; ++c)
+  {
+    layout.colour[c] = index_of (colours[c]);
+    layout.packed_rgb = layout.packed_rgb && layout.colour[c] >= 0 &&
+                        properties[layout.colour[c]].datatype == pcl::PCLPointField::UINT8;
+  }
+  const auto add_field = [&cloud, &layout] (const std::string &name) {
+    pcl::PCLPointField field;
+    field.name = name;
+    field.offset = layout.point_step;
+    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.count = 1;
+    cloud.fields.push_back (field);
+    layout.point_step += 4;
+  };
   cloud = pcl::PCLPointCloud2 ();
-  std::vector<int> slot (properties.size (), -1);  // property -> float slot in the point
-  std::uint32_t point_step = 0;
+  layout.slot.assign (properties.size (), -1);
   for (std::size_t i = 0; i < properties.size (); ++i)
   {
+    const int self = static_cast<int> (i);
     if (properties[i].count_type != 0 ||
-        (packed_rgb && (static_cast<int> (i) == colour[0] || static_cast<int> (i) == colour[1] ||
-                        static_cast<int> (i) == colour[2])))
+        (layout.packed_rgb && (self == layout.colour[0] || self == layout.colour[1] || self == layout.colour[2])))
       continue;
     std::string name = properties[i].name;
     if (name == "nx" || name == "ny" || name == "nz")
       name = std::string ("normal_") + name[1];
     if (std::any_of (cloud.fields.begin (), cloud.fields.end (), [&name] (const auto &f) { return f.name == name; }))
       continue;  // a repeated name: the first one counts
-    pcl::PCLPointField field;
-    field.name = name;
-    field.offset = point_step;
-    field.datatype = pcl::PCLPointField::FLOAT32;
-    field.count = 1;
-    cloud.fields.push_back (field);
-    slot[i] = static_cast<int> (point_step / 4);
-    point_step += 4;
+    layout.slot[i] = static_cast<int> (layout.point_step / 4);
+    add_field (name);
   }
-  std::uint32_t rgb_offset = 0;
-  if (packed_rgb)
+  if (layout.packed_rgb)
   {
-    pcl::PCLPointField field;
-    field.name = "rgb";
-    field.offset = rgb_offset = point_step;
-    field.datatype = pcl::PCLPointField::FLOAT32;
-    field.count = 1;
-    cloud.fields.push_back (field);
-    point_step += 4;
+    layout.rgb_offset = layout.point_step;
+    add_field ("rgb");
   }
-  // Every vertex takes at least its scalars' bytes (binary) or a character
-  // and a separator per property (ascii): a header that announces more than
-  // the file can hold is refused before anything is allocated.
-  std::uint64_t least_per_vertex = 0;
-  for (const auto &property : properties)
-    least_per_vertex += ascii ? 2 : pcl::getFieldSize (property.count_type ? property.count_type : property.datatype);
-  if (vertices * least_per_vertex > bytes.size () - body + (ascii ? 1 : 0))
+  return true;
+}
+
+/** One vertex record into \a point. */
+bool
+readPlyVertex (PlyBody &body, const std::vector<PlyProperty> &properties, const PlyLayout &layout,
+               std::uint8_t *point)
+{
+  if (!body.nextRecord ())
+    return false;
+  std::uint8_t rgb[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < properties.size (); ++i)
   {
-    reason = "the file is shorter than the " + std::to_string (vertices) + " vertices its header announces";
+    double value = 0.0;
+    if (!body.value (properties[i].count_type ? properties[i].count_type : properties[i].datatype, value))
+      return false;
+    if (properties[i].count_type)
+    {
+      if (!body.skipList (properties[i], value))  // a list on a vertex: read past its items
+        return false;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+      if (layout.packed_rgb && static_cast<int> (i) == layout.colour[c])
+        rgb[c] = static_cast<std::uint8_t> (std::min (255.0, std::max (0.0, value)));
+    if (layout.slot[i] >= 0)
+    {
+      const float f = static_cast<float> (value);
+      std::memcpy (point + 4 * layout.slot[i], &f, 4);
+    }
+  }
+  if (layout.packed_rgb)
+  {
+    const std::uint32_t packed = (static_cast<std::uint32_t> (rgb[0]) << 16) |
+                                 (static_cast<std::uint32_t> (rgb[1]) << 8) | rgb[2];
+    std::memcpy (point + layout.rgb_offset, &packed, 4);
+  }
+  return true;
+}
+
+bool
+parsePly (const std::string &bytes, pcl::PCLPointCloud2 &cloud, std::string &reason)
+{
+  PlyHeader header;
+  if (!parsePlyHeader (bytes, header, reason))
+    return false;
+  const auto vertex = std::find_if (header.elements.begin (), header.elements.end (),
+                                    [] (const PlyElement &e) { return e.name == "vertex"; });
+  if (vertex == header.elements.end ())
+  {
+    reason = "no 'vertex' element";
     return false;
   }
-  setShape (cloud, vertices, 1, point_step);
-  cloud.data.assign (vertices * point_step, 0);
-  std::istringstream text (ascii ? bytes.substr (body) : std::string ());
-  std::size_t at = body;
-  std::vector<std::string> values;
-  for (std::uint64_t k = 0; k < vertices; ++k)
+  PlyLayout layout;
+  if (!plyLayout (vertex->properties, cloud, layout, reason))
+    return false;
+  // Every record takes at least its scalars' bytes (binary) or a character
+  // and a separator per property (ascii): a header that announces more than
+  // the file can hold is refused before anything is allocated.
+  std::uint64_t least = 0;
+  for (const auto &element : header.elements)
+    for (const auto &property : element.properties)
+      least += element.count *
+               (header.ascii ? 2 : pcl::getFieldSize (property.count_type ? property.count_type : property.datatype));
+  if (least > bytes.size () - header.body + (header.ascii ? 1 : 0))
   {
-    std::size_t next_word = 0;
-    if (ascii)
-    {
-      std::string line;
-      if (!std::getline (text, line))
-      {
-        reason = "the file has fewer lines than the " + std::to_string (vertices) + " vertices it announces";
-        return false;
-      }
-      values = words (line);
-    }
-    // One value, from the line or from the bytes.
-    auto next = [&] (std::uint8_t datatype, double &value) {
-      if (!ascii)
-        return readBinary (bytes, at, datatype, big_endian, value);
-      if (next_word >= values.size ())
-        return false;
-      char *end = nullptr;
-      value = std::strtod (values[next_word].c_str (), &end);
-      return end != values[next_word].c_str () && *end == '\0' && ++next_word > 0;
-    };
-    std::uint8_t *point = cloud.data.data () + k * point_step;
-    std::uint8_t rgb[3] = {0, 0, 0};
-    for (std::size_t i = 0; i < properties.size (); ++i)
-    {
-      double value = 0.0;
-      if (!next (properties[i].count_type ? properties[i].count_type : properties[i].datatype, value))
-      {
-        reason = "vertex " + std::to_string (k) + " is truncated or malformed";
-        return false;
-      }
-      if (properties[i].count_type)
-      {
-        // A list on a vertex: read past its items.
-        if (!(value >= 0.0 && value <= 1000.0))
-        {
-          reason = "vertex " + std::to_string (k) + " has a bad list length";
-          return false;
-        }
-        for (int item = 0; item < static_cast<int> (value); ++item)
-        {
-          double ignored = 0.0;
-          if (!next (properties[i].datatype, ignored))
-          {
-            reason = "vertex " + std::to_string (k) + " is truncated";
-            return false;
-          }
-        }
-        continue;
-      }
-      for (int c = 0; c < 3; ++c)
-        if (packed_rgb && static_cast<int> (i) == colour[c])
-          rgb[c] = static_cast<std::uint8_t> (std::min (255.0, std::max (0.0, value)));
-      if (slot[i] >= 0)
-      {
-        const float f = static_cast<float> (value);
-        std::memcpy (point + 4 * slot[i], &f, 4);
-      }
-    }
-    if (packed_rgb)
-    {
-      const std::uint32_t packed = (static_cast<std::uint32_t> (rgb[0]) << 16) |
-                                   (static_cast<std::uint32_t> (rgb[1]) << 8) | rgb[2];
-      std::memcpy (point + rgb_offset, &packed, 4);
-    }
+    reason = "the file is shorter than the " + std::to_string (vertex->count) + " vertices its header announces";
+    return false;
   }
+  // Elements before the vertices (PLY allows any order): read past them.
+  PlyBody body (bytes, header);
+  for (auto element = header.elements.begin (); element != vertex; ++element)
+    if (!body.skip (*element))
+    {
+      reason = "the '" + element->name + "' element before the vertices is truncated or malformed";
+      return false;
+    }
+  setShape (cloud, vertex->count, 1, layout.point_step);
+  cloud.data.assign (vertex->count * layout.point_step, 0);
+  for (std::uint64_t k = 0; k < vertex->count; ++k)
+    if (!readPlyVertex (body, vertex->properties, layout, cloud.data.data () + k * layout.point_step))
+    {
+      reason = "vertex " + std::to_string (k) + " is truncated or malformed";
+      return false;
+    }
   return true;
 }
 }  // namespace

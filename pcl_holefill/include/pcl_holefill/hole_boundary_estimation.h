@@ -6,6 +6,7 @@
 
 #include <pcl_holefill/boundary_loop.h>
 #include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/loop_tracing.h>
 #include <pcl_holefill/point_grid.h>
 
 #include <pcl/pcl_base.h>
@@ -144,10 +145,33 @@ protected:
   using pcl::PCLBase<PointT>::deinitCompute;
 
 private:
+  /** A usable point that the angular-gap test put on a rim. */
+  struct RimPoint
+  {
+    int local;        //!< usable point
+    AngularGap gap;   //!< its widest empty sector
+    float spacing;    //!< distance to its nearest distinct neighbour
+  };
+
   /** Validates parameters and input, builds the neighbour search over the
     * usable points. False (after a message) when nothing can be done. */
   bool
   prepare (const char *caller);
+
+  /** Stage 1, the angular-gap test on every usable point: the rim points
+    * (in usable order), and every point's spacing and sampling pitch. */
+  std::vector<RimPoint>
+  findRimPoints (std::vector<float> &pitch_of);
+
+  /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
+    * size touches; the others border gaps of the sampling. */
+  void
+  keepHoleSizedGaps (std::vector<RimPoint> &rim_points, const std::vector<float> &pitch_of) const;
+
+  /** Stage 3 for one traced loop (members index \a rim): the midpoint
+    * refinement of section 3.3, its measures, and hole or border. */
+  BoundaryLoop
+  finishLoop (const TracedLoop &traced, const std::vector<RimPoint> &rim, const std::vector<float> &pitch_of) const;
 
   /** k nearest usable points to usable point \a local (itself excluded), as local ids. */
   void

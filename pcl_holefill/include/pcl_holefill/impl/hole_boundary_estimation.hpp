@@ -233,26 +233,15 @@ HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
   loop.mean_spacing = loop.indices.empty () ? 0.f : spacing / static_cast<float> (loop.indices.size ());
 }
 
-template <typename PointT> void
-HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
+template <typename PointT> std::vector<typename HoleBoundaryEstimation<PointT>::RimPoint>
+HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
 {
-  loops.clear ();
-  if (!prepare ("compute"))
-    return;
-
-  // 1. The angular-gap test on every usable point. Only rim points are kept
-  // (with their gap direction and spacing): a few percent of the cloud.
-  struct RimPoint
-  {
-    int local;
-    AngularGap gap;
-    float spacing;
-  };
   const std::size_t n = positions_.size ();
   const int threads = resolveThreadCount (threads_);
   std::vector<RimPoint> rim_points;
   std::mutex rim_mutex;  // rim points are few: a lock per rim point is cheap
-  std::vector<float> spacing_of (n, 0.f), pitch_of (n, 0.f);
+  std::vector<float> spacing_of (n, 0.f);
+  pitch_of.assign (n, 0.f);
   auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
     if (count == 0)
       return;
@@ -309,76 +298,86 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
   mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
   mean_pitch_ = static_cast<float> (pitch_sum / static_cast<double> (n));
   std::sort (rim_points.begin (), rim_points.end (), [] (const auto &a, const auto &b) { return a.local < b.local; });
-  // 1b. Of those, only the points that an empty disc of the minimum hole
-  // size touches: the rest are gaps of the sampling.
-  {
-    std::vector<char> keep (rim_points.size (), 0);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64)
-    for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t> (rim_points.size ()); ++r)
-    {
-      thread_local std::vector<int> ids;
-      thread_local std::vector<float> d2;
-      const int local = rim_points[r].local;
-      nearestUsable (static_cast<std::size_t> (local), k_, ids, d2);
-      float pitch = pitch_of[local];
-      for (const int j : ids)
-        pitch += pitch_of[j];
-      pitch /= static_cast<float> (ids.size () + 1);
-      const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
-      keep[r] = emptyDiscTouches (local, rim_points[r].gap, diameter, pitch) ? 1 : 0;
-    }
-    std::size_t kept = 0;
-    for (std::size_t r = 0; r < rim_points.size (); ++r)
-      if (keep[r])
-        rim_points[kept++] = rim_points[r];
-    rim_points.resize (kept);
-  }
-  rim_spacing_.clear ();
-  for (const auto &r : rim_points)
-    rim_spacing_.push_back ({r.local, r.spacing});
+  return rim_points;
+}
 
-  // 2. Chain the rim points into loops.
-  std::vector<int> rim;
-  std::vector<Eigen::Vector3f> rim_positions, rim_normals, rim_gaps;
-  for (const auto &r : rim_points)
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (std::vector<RimPoint> &rim_points,
+                                                   const std::vector<float> &pitch_of) const
+{
+  std::vector<char> keep (rim_points.size (), 0);
+#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 64)
+  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t> (rim_points.size ()); ++r)
   {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<float> d2;
+    const int local = rim_points[r].local;
+    nearestUsable (static_cast<std::size_t> (local), k_, ids, d2);
+    float pitch = pitch_of[local];
+    for (const int j : ids)
+      pitch += pitch_of[j];
+    pitch /= static_cast<float> (ids.size () + 1);
+    const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
+    keep[r] = emptyDiscTouches (local, rim_points[r].gap, diameter, pitch) ? 1 : 0;
+  }
+  std::size_t kept = 0;
+  for (std::size_t r = 0; r < rim_points.size (); ++r)
+    if (keep[r])
+      rim_points[kept++] = rim_points[r];
+  rim_points.resize (kept);
+}
+
+template <typename PointT> BoundaryLoop
+HoleBoundaryEstimation<PointT>::finishLoop (const TracedLoop &traced, const std::vector<RimPoint> &rim,
+                                            const std::vector<float> &pitch_of) const
+{
+  BoundaryLoop loop;
+  loop.closed = traced.closed;
+  pcl::Indices coarse;
+  std::vector<Eigen::Vector3f> loop_positions, loop_gaps;
+  float pitch = 0.f;
+  for (const int m : traced.members)
+  {
+    coarse.push_back ((*usable_)[rim[m].local]);
+    loop_positions.push_back (positions_[rim[m].local]);
+    loop_gaps.push_back (rim[m].gap.direction);
+    pitch += pitch_of[rim[m].local];
+  }
+  loop.indices = refineByMidpoints (
+      coarse, traced.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
+      [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, 4 * coarse.size () + 64);
+  measure (loop);
+  loop.pitch = pitch / static_cast<float> (traced.members.size ());
+  const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
+  loop.is_hole = loop.closed && gapsPointInside (loop_positions, loop_gaps) && loop.diameter >= min_diameter &&
+                 (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
+  return loop;
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
+{
+  loops.clear ();
+  if (!prepare ("compute"))
+    return;
+  // 1. The angular-gap test; 1b. only gaps as large as a hole.
+  std::vector<float> pitch_of;
+  std::vector<RimPoint> rim = findRimPoints (pitch_of);
+  keepHoleSizedGaps (rim, pitch_of);
+  rim_spacing_.clear ();
+  std::vector<Eigen::Vector3f> rim_positions, rim_normals, rim_gaps;
+  for (const auto &r : rim)
+  {
+    rim_spacing_.push_back ({r.local, r.spacing});
     flags_[(*usable_)[r.local]] = 1;
-    rim.push_back (r.local);
     rim_positions.push_back (positions_[r.local]);
     rim_normals.push_back (normals_[r.local]);
     rim_gaps.push_back (r.gap.direction);
   }
-  const auto traced = traceBoundaryLoops (rim_positions, rim_normals, rim_gaps,
-                                          link_factor_ * mean_pitch_, min_loop_points_);
-
-  // 3. Close the gaps along each loop, measure it, tell a hole from a border.
-  for (const auto &t : traced)
-  {
-    BoundaryLoop loop;
-    loop.closed = t.closed;
-    pcl::Indices coarse;
-    for (const int m : t.members)
-      coarse.push_back ((*usable_)[rim[m]]);
-    loop.indices = refineByMidpoints (
-        coarse, t.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
-        [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, 4 * coarse.size () + 64);
-    std::vector<Eigen::Vector3f> loop_positions, loop_gaps;
-    for (const int m : t.members)
-    {
-      loop_positions.push_back (rim_positions[m]);
-      loop_gaps.push_back (rim_gaps[m]);
-    }
-    measure (loop);
-    float pitch = 0.f;
-    for (const int m : t.members)
-      pitch += pitch_of[rim[m]];
-    loop.pitch = pitch / static_cast<float> (t.members.size ());
-    const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
-    loop.is_hole = loop.closed && gapsPointInside (loop_positions, loop_gaps) &&
-                   loop.diameter >= min_diameter &&
-                   (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
-    loops.push_back (std::move (loop));
-  }
+  // 2. Chain the rim points into loops; 3. refine, measure and classify each.
+  for (const auto &traced : traceBoundaryLoops (rim_positions, rim_normals, rim_gaps, link_factor_ * mean_pitch_,
+                                                min_loop_points_))
+    loops.push_back (finishLoop (traced, rim, pitch_of));
 }
 
 template <typename PointT> bool

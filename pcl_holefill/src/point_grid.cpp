@@ -336,9 +336,6 @@ PointGrid::forEachNearestK (int k, int threads,
 {
   if (k <= 0)
     return;
-  const auto unpack = [] (CellKey key, int shift) {
-    return static_cast<int> ((key >> shift) & 0x1FFFFFULL) - kCoordinateBias;
-  };
 #pragma omp parallel num_threads(std::max (threads, 1))
   {
     std::vector<Entry> block;
@@ -348,7 +345,7 @@ PointGrid::forEachNearestK (int k, int threads,
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cell_keys_.size ()); ++c)
     {
-      const int cx = unpack (cell_keys_[c], 42), cy = unpack (cell_keys_[c], 21), cz = unpack (cell_keys_[c], 0);
+      const int cx = decode (cell_keys_[c], 42), cy = decode (cell_keys_[c], 21), cz = decode (cell_keys_[c], 0);
       block.clear ();
       for (int ix = cx - 1; ix <= cx + 1; ++ix)
         for (int iy = cy - 1; iy <= cy + 1; ++iy)

@@ -157,6 +157,7 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   sampler.setSigmaN (0.1f);
   sampler.setEquilibriumDistance (1.5f * h);
   sampler.setConstraintTolerance (0.1f * h);
+  sampler.setCurvatureSignTolerance (0.1f * h);
   Front next;
   ContractionStats stats;
   ASSERT_TRUE (sampler.contract (former, next, stats));

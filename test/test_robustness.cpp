@@ -184,12 +184,44 @@ TEST_P (NoisyHoles, FoundAndCoveredWithinTheNoise)
   EXPECT_EQ (o.detection.false_holes, 0u);
   EXPECT_TRUE (o.fill.kept_unchanged);
   // Coverage of the removed samples' noise-free positions (the surface to cover).
-  EXPECT_GE (o.fill.coverage, 0.94);           // reached: 95.8 % (cube, scan lines) to 100 %
+  EXPECT_GE (o.fill.coverage, 0.99);           // reached: 100 % (95.8 % on cube scan lines before the noise was measured right)
   EXPECT_LE (o.fill.max_error, 2.5 * sigma);  // reached: 2.06 sigma (cube, varying density)
 }
 
 INSTANTIATE_TEST_SUITE_P (EverySampling, NoisyHoles,
                           testing::Combine (testing::Values (0, 1), testing::Range (0, 6)), samplingName);
+
+// The rim's noise, measured on scan lines (4 times denser along a line than
+// across, as scanners sample). It sets the combination constraint's
+// tolerance. It was a plane's RMS over the neighbours within 2.5 mean
+// spacings: on scan lines those lie on one line, and a plane through that
+// line and the normal fits them exactly, so it read 0.1 sigma. The fill then
+// took noisy neighbours for overshoots and stopped early: coverage 45-72 %
+// on fandisk and pyramid scans at noise 0.1-0.5 %, now 98-100 %. Read as 0.1
+// sigma, the noise left the tolerance at its floor, 0.1 mean spacings.
+class ScanLineNoise : public testing::TestWithParam<int>
+{};
+
+TEST_P (ScanLineNoise, IsMeasuredAndTheHolesClose)
+{
+  const double noise = 0.003;
+  const auto c = makeCase (model (GetParam ()), Sampling::kScan, noise, false, true);
+  const Outcome o = fillCase (c);
+  const double sigma = noise * corpus::diagonal (c.shape);
+  EXPECT_EQ (o.detection.found, o.detection.cut);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+  EXPECT_GE (o.min_noise, 0.8 * sigma);  // reached: 0.92 to 1.08 sigma
+  EXPECT_LE (o.max_noise, 1.3 * sigma);
+  EXPECT_GE (o.fill.coverage, 0.99);           // reached: 100 % (was 95.8 to 100 %)
+  EXPECT_LE (o.fill.max_error, 2.5 * sigma);  // reached: 0.71 to 1.89 sigma
+  EXPECT_EQ (o.closed_but_open, 0u);
+}
+
+// The L-block's corner hole on this cloud is left out: its noise is measured
+// right (0.88 to 1.12 sigma), but the fill runs 0.056 off at one corner, 88 %
+// covered, as before the measure was fixed (doc/robustness.md).
+INSTANTIATE_TEST_SUITE_P (SmoothAndSharp, ScanLineNoise, testing::Values (0, 1, 2),
+                          [] (const testing::TestParamInfo<int> &info) { return model (info.param).name; });
 
 // A sphere's caps from noisy points with exact normals, at noise 0.1 % and
 // 0.5 % of the diagonal: the normals fit a linear field, so the first-order
@@ -257,7 +289,8 @@ TEST_P (NoisyEstimatedNormals, SigmaNFollowsTheNormalsAndTheFillStaysWithinTheNo
 }
 
 // Scan lines are left out: their estimated normals are rougher across the
-// lines, and coverage there is 93-95 % (doc/robustness.md).
+// lines; coverage there is 98.5-100 %, but the cube's corner reaches 7.3
+// sigma (doc/robustness.md).
 INSTANTIATE_TEST_SUITE_P (EverySampling, NoisyEstimatedNormals,
                           testing::Combine (testing::Values (0, 1, 3), testing::Values (0, 1, 2, 3, 5)),
                           samplingName);

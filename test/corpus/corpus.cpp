@@ -633,6 +633,8 @@ runCase (const Case &c)
   {
     o.min_sigma_n = o.reported ? std::min (o.min_sigma_n, r.sigma_n) : r.sigma_n;
     o.max_sigma_n = std::max (o.max_sigma_n, r.sigma_n);
+    o.min_noise = o.reported ? std::min (o.min_noise, r.noise) : r.noise;
+    o.max_noise = std::max (o.max_noise, r.noise);
     ++o.reported;
     o.closed += r.closed ? 1 : 0;
     o.resumed += r.resumed > 0 ? 1 : 0;

@@ -144,6 +144,8 @@ struct Outcome
   double spacing_ratio = 0.0;
   /** Smallest and largest sigma_n the holes were filled with (chosen per hole by default). */
   float min_sigma_n = 0.f, max_sigma_n = 0.f;
+  /** Smallest and largest noise the holes' rims were measured to have (HoleReport::noise). */
+  float min_noise = 0.f, max_noise = 0.f;
   double seconds = 0.0;                  //!< HoleFilling::filter alone
 };
 

@@ -97,12 +97,25 @@ public:
   float
   getEquilibriumDistance () const { return equilibrium_distance_; }
 
-  /** \brief Tolerance of the combination constraint and of the convex/concave
-    * labels (cloud units, >= 0). */
+  /** \brief Tolerance of the combination constraint: how far past a
+    * reference point's tangent plane a sample may lie (cloud units, >= 0;
+    * default 0). On noisy data about the noise of one point. */
   void
   setConstraintTolerance (float tolerance) { tolerance_ = tolerance; }
   float
   getConstraintTolerance () const { return tolerance_; }
+
+  /** \brief How far a reference point may lie above or below its
+    * neighbours (their weighted mean height over its tangent plane) and
+    * still count as flat, not convex or concave (cloud units, >= 0; default
+    * 0). Smaller than the constraint's tolerance on noisy data: the mean
+    * height grows with the reach across an edge, and a dead zone as wide as
+    * one point's noise hides the edges of noisy scans (a cylinder's rim at
+    * noise 0.3 % of the diagonal: the patch ran 0.1 past it). */
+  void
+  setCurvatureSignTolerance (float tolerance) { sign_tolerance_ = tolerance; }
+  float
+  getCurvatureSignTolerance () const { return sign_tolerance_; }
 
   /** \brief Reach of the combination constraint: the reference points a
     * sample is tested against, and the neighbours that label them convex or
@@ -221,6 +234,7 @@ private:
   NormalPropagation<PointT> propagation_;
   float equilibrium_distance_ = 0.f;
   float tolerance_ = 0.f;
+  float sign_tolerance_ = 0.f;
   float constraint_radius_ = 0.f;
   int threads_ = 1;
   bool combination_constraint_ = true;

@@ -106,7 +106,7 @@ ElasticSampler<PointT>::curvatureSign (int index) const
     total += w;
   }
   const float mean = total > 0.f ? offset / total : 0.f;
-  const signed char sign = mean < -tolerance_ ? 1 : (mean > tolerance_ ? -1 : 0);
+  const signed char sign = mean < -sign_tolerance_ ? 1 : (mean > sign_tolerance_ ? -1 : 0);
   __atomic_store_n (cached, sign, __ATOMIC_RELAXED);
   return sign;
 }
@@ -354,11 +354,13 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
   stats = ContractionStats ();
   if (!propagation_.checkParameters ("ElasticSampler::contract"))
     return false;
-  if (!(equilibrium_distance_ > 0.f && std::isfinite (equilibrium_distance_)) ||
-      !(tolerance_ >= 0.f && std::isfinite (tolerance_)))
+  auto non_negative = [] (float v) { return v >= 0.f && std::isfinite (v); };
+  if (!(equilibrium_distance_ > 0.f && std::isfinite (equilibrium_distance_)) || !non_negative (tolerance_) ||
+      !non_negative (sign_tolerance_))
   {
     PCL_ERROR ("[pcl_holefill::ElasticSampler::contract] Invalid parameters: equilibrium distance = %g (> 0), "
-               "constraint tolerance = %g (>= 0).\n", equilibrium_distance_, tolerance_);
+               "constraint tolerance = %g (>= 0), curvature sign tolerance = %g (>= 0).\n", equilibrium_distance_,
+               tolerance_, sign_tolerance_);
     return false;
   }
   curvature_signs_.resize (input_->size (), 2);

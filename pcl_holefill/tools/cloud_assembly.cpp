@@ -60,17 +60,18 @@ column (const std::string &name, std::uint8_t datatype, const std::vector<T> &va
 }
 }  // namespace
 
+namespace
+{
+/** Is the layout one PCL's conversions can trust: every field inside a
+  * point, every point inside the data, float x, y, z? */
 bool
-prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
-              std::string &error)
+checkLayout (const pcl::PCLPointCloud2 &file_cloud, std::string &error)
 {
   if (static_cast<std::size_t> (file_cloud.width) * file_cloud.height == 0)
   {
     error = "the cloud has no point";
     return false;
   }
-  // Every field inside a point, every point inside the data: PCL's
-  // conversions trust both.
   for (const auto &field : file_cloud.fields)
     if (static_cast<std::uint64_t> (field.offset) + pcl::getFieldSize (field.datatype) * std::max<std::uint64_t> (field.count, 1) >
         file_cloud.point_step)
@@ -88,14 +89,13 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
     error = "the cloud has no float x, y, z fields";
     return false;
   }
-  prepared.fields = file_cloud;
-  // The output gains points: it cannot stay organized.
-  prepared.fields.width = file_cloud.width * file_cloud.height;
-  prepared.fields.height = 1;
-  prepared.fields.row_step = prepared.fields.point_step * prepared.fields.width;
-  prepared.points.reset (new pcl::PointCloud<pcl::PointNormal>);
-  const bool has_normals = hasFloatField (file_cloud, "normal_x") && hasFloatField (file_cloud, "normal_y") &&
-                           hasFloatField (file_cloud, "normal_z");
+  return true;
+}
+
+/** The positions into prepared.points; counts the finite ones. */
+void
+readPositions (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
+{
   pcl::PointCloud<pcl::PointXYZ> xyz;
   pcl::fromPCLPointCloud2 (file_cloud, xyz);
   prepared.points->resize (xyz.size ());
@@ -105,53 +105,82 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
     (*prepared.points)[i].getVector3fMap () = xyz[i].getVector3fMap ();
     prepared.finite_points += std::isfinite (xyz[i].x) && std::isfinite (xyz[i].y) && std::isfinite (xyz[i].z);
   }
+}
+
+/** The file's normals into prepared.points, read field by field (PCL's
+  * conversion to a point type with a curvature field prints a warning for
+  * every cloud without one); returns how many are usable (finite, not 0). */
+std::size_t
+readNormals (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
+{
+  std::size_t usable_normals = 0;
+  const std::uint32_t n[3] = {offsetOf (file_cloud, "normal_x"), offsetOf (file_cloud, "normal_y"),
+                              offsetOf (file_cloud, "normal_z")};
+  for (std::size_t i = 0; i < prepared.points->size (); ++i)
+  {
+    const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
+    float v[3];
+    for (int k = 0; k < 3; ++k)
+      std::memcpy (&v[k], row + n[k], sizeof (float));
+    (*prepared.points)[i].getNormalVector3fMap () = Eigen::Vector3f (v[0], v[1], v[2]);
+    const float length = Eigen::Vector3f (v[0], v[1], v[2]).norm ();
+    usable_normals += std::isfinite (length) && length > kMinNormalLength ? 1 : 0;
+  }
+  return usable_normals;
+}
+
+/** Adds the estimated normals of prepared.points to prepared.fields, for a
+  * file that had none: its rows are written with them. */
+bool
+addNormalFields (PreparedCloud &prepared, std::string &error)
+{
+  pcl::PointCloud<pcl::Normal> normals;
+  normals.resize (prepared.points->size ());
+  for (std::size_t i = 0; i < normals.size (); ++i)
+    normals[i].getNormalVector3fMap () = (*prepared.points)[i].getNormalVector3fMap ();
+  pcl::PCLPointCloud2 normal_fields, merged;
+  pcl::toPCLPointCloud2 (normals, normal_fields);
+  normal_fields.width = prepared.fields.width;
+  normal_fields.height = 1;
+  if (!pcl::concatenateFields (prepared.fields, normal_fields, merged))
+  {
+    error = "could not add the estimated normals to the cloud's fields";
+    return false;
+  }
+  prepared.fields = merged;
+  return true;
+}
+}  // namespace
+
+bool
+prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
+              std::string &error)
+{
+  if (!checkLayout (file_cloud, error))
+    return false;
+  prepared.fields = file_cloud;
+  // The output gains points: it cannot stay organized.
+  prepared.fields.width = file_cloud.width * file_cloud.height;
+  prepared.fields.height = 1;
+  prepared.fields.row_step = prepared.fields.point_step * prepared.fields.width;
+  prepared.points.reset (new pcl::PointCloud<pcl::PointNormal>);
+  readPositions (file_cloud, prepared);
   if (prepared.finite_points == 0)
   {
     error = "the cloud has no finite point";
     return false;
   }
-  // The file's normals, read field by field (PCL's conversion to a point
-  // type with a curvature field prints a warning for every cloud without one).
-  std::size_t usable_normals = 0;
-  if (has_normals)
-  {
-    const std::uint32_t n[3] = {offsetOf (file_cloud, "normal_x"), offsetOf (file_cloud, "normal_y"),
-                                offsetOf (file_cloud, "normal_z")};
-    for (std::size_t i = 0; i < prepared.points->size (); ++i)
-    {
-      const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
-      float v[3];
-      for (int k = 0; k < 3; ++k)
-        std::memcpy (&v[k], row + n[k], sizeof (float));
-      (*prepared.points)[i].getNormalVector3fMap () = Eigen::Vector3f (v[0], v[1], v[2]);
-      const float length = Eigen::Vector3f (v[0], v[1], v[2]).norm ();
-      usable_normals += std::isfinite (length) && length > kMinNormalLength ? 1 : 0;
-    }
-  }
+  const bool has_normals = hasFloatField (file_cloud, "normal_x") && hasFloatField (file_cloud, "normal_y") &&
+                           hasFloatField (file_cloud, "normal_z");
+  const std::size_t usable_normals = has_normals ? readNormals (file_cloud, prepared) : 0;
   // Normals that are mostly 0 0 0 or not finite (how some tools write "no
   // normal") are estimated for the fill; the input rows keep theirs.
   prepared.normals_unusable = has_normals && usable_normals < kMinUsableNormalShare * prepared.finite_points;
-  if (has_normals && prepared.normals_unusable)
-    estimateOrientedNormals (*prepared.points, threads);
   prepared.normals_estimated = !has_normals || prepared.normals_unusable;
-  if (!has_normals)
-  {
+  if (prepared.normals_estimated)
     estimateOrientedNormals (*prepared.points, threads);
-    pcl::PointCloud<pcl::Normal> normals;
-    normals.resize (prepared.points->size ());
-    for (std::size_t i = 0; i < normals.size (); ++i)
-      normals[i].getNormalVector3fMap () = (*prepared.points)[i].getNormalVector3fMap ();
-    pcl::PCLPointCloud2 normal_fields, merged;
-    pcl::toPCLPointCloud2 (normals, normal_fields);
-    normal_fields.width = prepared.fields.width;
-    normal_fields.height = 1;
-    if (!pcl::concatenateFields (prepared.fields, normal_fields, merged))
-    {
-      error = "could not add the estimated normals to the cloud's fields";
-      return false;
-    }
-    prepared.fields = merged;
-  }
+  if (!has_normals && !addNormalFields (prepared, error))
+    return false;
   prepared.points->width = static_cast<std::uint32_t> (prepared.points->size ());
   prepared.points->height = 1;
   prepared.points->is_dense = prepared.finite_points == prepared.points->size ();

@@ -90,101 +90,120 @@ usage (const char *program)
   return out.str ();
 }
 
-bool
-parseOptions (int argc, char **argv, Options &options, std::string &error)
+namespace
 {
-  const std::map<std::string, FloatOption> floats{
+/** Sets the switch \a arg (an option without value); false if it is none. */
+bool
+setSwitch (const std::string &arg, Options &options)
+{
+  static const std::map<std::string, bool Options::*> switches{
+      {"-h", &Options::help},           {"--help", &Options::help},
+      {"-q", &Options::quiet},          {"-denoise", &Options::denoise},
+      {"-zero_order", &Options::zero_order}, {"-detect_only", &Options::detect_only},
+  };
+  const auto found = switches.find (arg);
+  if (found == switches.end ())
+    return false;
+  options.*(found->second) = true;
+  return true;
+}
+
+bool
+parseSigmaN (const std::string &text, Options &options, std::string &error)
+{
+  if (text == "sup" || text == "Sup" || text == "inf")
+    options.sigma_n = pcl_holefill::kSup;
+  else if (text == "auto")
+    options.sigma_n = 0.f;
+  else if (!toFloat (text, options.sigma_n) || !(options.sigma_n >= 0.f))
+  {
+    error = "-sigma_n takes a number >= 0, 'auto' (= 0) or 'sup', not '" + text + "'";
+    return false;
+  }
+  return true;
+}
+
+/** -max_passes and -threads: whole numbers in their ranges. */
+bool
+parseCount (const std::string &arg, const std::string &text, Options &options, std::string &error)
+{
+  int n = 0;
+  const bool passes = arg == "-max_passes";
+  if (!toInt (text, n) || (passes ? (n < 0 || n > 100000) : (n < 0 || n > 1024)))
+  {
+    error = arg + (passes ? " takes a whole number from 0 to 100000" : " takes a whole number from 0 to 1024") +
+            ", not '" + text + "'";
+    return false;
+  }
+  (passes ? options.max_passes : options.threads) = n;
+  return true;
+}
+
+bool
+parseFloat (const std::string &arg, const FloatOption &f, const std::string &text, Options &options,
+            std::string &error)
+{
+  float v = 0.f;
+  if (!toFloat (text, v) || v < f.low || v > f.high)
+  {
+    std::ostringstream why;
+    why << arg << " takes a number from " << f.low << (f.high < 1e29f ? " to " + std::to_string (f.high) : " up")
+        << ", not '" << text << "'";
+    error = why.str ();
+    return false;
+  }
+  options.*(f.field) = v;
+  return true;
+}
+
+const std::map<std::string, FloatOption> &
+floatOptions ()
+{
+  static const std::map<std::string, FloatOption> floats{
       {"-radius", {&Options::radius, 0.f, 1e30f}},       {"-sigma_r", {&Options::sigma_r, 0.f, 1e30f}},
       {"-sigma_d", {&Options::sigma_d, 0.f, 1e30f}},     {"-shrink", {&Options::shrink, 1.f, 100.f}},
       {"-ratio", {&Options::ratio, 0.f, 0.999f}},        {"-spacing", {&Options::spacing, 0.25f, 10.f}},
       {"-max_hole_size", {&Options::max_hole_size, 0.f, 1e30f}},
       {"-min_hole_size", {&Options::min_hole_size, 2.f, 100.f}},
   };
-  const std::map<std::string, std::string Options::*> strings{
+  return floats;
+}
+
+const std::map<std::string, std::string Options::*> &
+stringOptions ()
+{
+  static const std::map<std::string, std::string Options::*> strings{
       {"-holes", &Options::holes_file}, {"-report", &Options::report_file},
       {"-png", &Options::png_file},     {"-demo", &Options::demo_dir},
   };
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    auto value = [&] (std::string &out) {
-      if (i + 1 >= argc)
-      {
-        error = "option " + arg + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    std::string text;
-    if (arg == "-h" || arg == "--help")
-      options.help = true;
-    else if (arg == "-q")
-      options.quiet = true;
-    else if (arg == "-denoise")
-      options.denoise = true;
-    else if (arg == "-zero_order")
-      options.zero_order = true;
-    else if (arg == "-detect_only")
-      options.detect_only = true;
-    else if (arg == "-sigma_n")
-    {
-      if (!value (text))
-        return false;
-      if (text == "sup" || text == "Sup" || text == "inf")
-        options.sigma_n = pcl_holefill::kSup;
-      else if (text == "auto")
-        options.sigma_n = 0.f;
-      else if (!toFloat (text, options.sigma_n) || !(options.sigma_n >= 0.f))
-      {
-        error = "-sigma_n takes a number >= 0, 'auto' (= 0) or 'sup', not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg == "-max_passes" || arg == "-threads")
-    {
-      int n = 0;
-      if (!value (text))
-        return false;
-      const bool passes = arg == "-max_passes";
-      if (!toInt (text, n) || (passes ? (n < 0 || n > 100000) : (n < 0 || n > 1024)))
-      {
-        error = arg + (passes ? " takes a whole number from 0 to 100000" : " takes a whole number from 0 to 1024") +
-                ", not '" + text + "'";
-        return false;
-      }
-      (passes ? options.max_passes : options.threads) = n;
-    }
-    else if (floats.count (arg))
-    {
-      const FloatOption &f = floats.at (arg);
-      float v = 0.f;
-      if (!value (text))
-        return false;
-      if (!toFloat (text, v) || v < f.low || v > f.high)
-      {
-        std::ostringstream why;
-        why << arg << " takes a number from " << f.low << (f.high < 1e29f ? " to " + std::to_string (f.high) : " up")
-            << ", not '" << text << "'";
-        error = why.str ();
-        return false;
-      }
-      options.*(f.field) = v;
-    }
-    else if (strings.count (arg))
-    {
-      if (!value (options.*(strings.at (arg))))
-        return false;
-    }
-    else if (!arg.empty () && arg[0] == '-' && arg.size () > 1)
-    {
-      error = "unknown option " + arg + " (see -h)";
-      return false;
-    }
-    else
-      positional.push_back (arg);
-  }
+  return strings;
+}
+
+bool
+takesValue (const std::string &arg)
+{
+  return arg == "-sigma_n" || arg == "-max_passes" || arg == "-threads" || floatOptions ().count (arg) ||
+         stringOptions ().count (arg);
+}
+
+/** Sets option \a arg (one that takes a value) to \a text, checked. */
+bool
+setValue (const std::string &arg, const std::string &text, Options &options, std::string &error)
+{
+  if (arg == "-sigma_n")
+    return parseSigmaN (text, options, error);
+  if (arg == "-max_passes" || arg == "-threads")
+    return parseCount (arg, text, options, error);
+  if (floatOptions ().count (arg))
+    return parseFloat (arg, floatOptions ().at (arg), text, options, error);
+  options.*(stringOptions ().at (arg)) = text;
+  return true;
+}
+
+/** The input and output files, or -demo's none. */
+bool
+takeFiles (const std::vector<std::string> &positional, Options &options, std::string &error)
+{
   if (options.help)
     return true;
   if (!options.demo_dir.empty ())
@@ -204,6 +223,37 @@ parseOptions (int argc, char **argv, Options &options, std::string &error)
   options.input = positional[0];
   options.output = positional[1];
   return true;
+}
+}  // namespace
+
+bool
+parseOptions (int argc, char **argv, Options &options, std::string &error)
+{
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (setSwitch (arg, options))
+      continue;
+    if (takesValue (arg))
+    {
+      if (i + 1 >= argc)
+      {
+        error = "option " + arg + " needs a value";
+        return false;
+      }
+      if (!setValue (arg, argv[++i], options, error))
+        return false;
+    }
+    else if (!arg.empty () && arg[0] == '-' && arg.size () > 1)
+    {
+      error = "unknown option " + arg + " (see -h)";
+      return false;
+    }
+    else
+      positional.push_back (arg);
+  }
+  return takeFiles (positional, options, error);
 }
 
 void

@@ -54,6 +54,7 @@ public:
 
 protected:
   using pcl::Filter<PointT>::filter_name_;
+  using pcl::Filter<PointT>::getClassName;
   using pcl::Filter<PointT>::input_;
   using pcl::Filter<PointT>::indices_;
 

@@ -158,6 +158,24 @@ private:
   bool
   prepare (const char *caller);
 
+  /** Are the parameters in range? (A message says which is not.) */
+  bool
+  checkParameters (const char *caller) const;
+
+  /** usable_: the points of indices_ with finite coordinates and a normal;
+    * false when too few. */
+  bool
+  selectUsablePoints (const char *caller);
+
+  /** Puts usable_ in spatial (Morton) order, each position once; returns
+    * the grid's cell size. */
+  float
+  orderSpatially (const char *caller);
+
+  /** positions_, normals_ and local_of_ from usable_. */
+  void
+  copyUsablePoints ();
+
   /** Stage 1, the angular-gap test on every usable point: the rim points
     * (in usable order), and every point's spacing and sampling pitch. */
   std::vector<RimPoint>

@@ -39,6 +39,23 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] The input cloud is empty: no loop.\n", caller);
     return false;
   }
+  if (!checkParameters (caller) || !selectUsablePoints (caller))
+    return false;
+  const float cell = orderSpatially (caller);
+  copyUsablePoints ();
+  if (search_)
+    search_->setInputCloud (input_, usable_);
+  else
+  {
+    grid_.reset (cell);
+    grid_.build (positions_);
+  }
+  return true;
+}
+
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::checkParameters (const char *caller) const
+{
   if (k_ < 3 || k_ > 64 || !(angle_threshold_ >= M_PI / 2.0 && angle_threshold_ < 2.f * M_PI) ||
       !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
       !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)) ||
@@ -53,6 +70,12 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
                min_hole_pitches_, min_hole_diameter_);
     return false;
   }
+  return true;
+}
+
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
+{
   if (!initCompute ())
     return false;
   if (!indicesInRange (*indices_, input_->size ()))
@@ -74,37 +97,46 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
               "no loop.\n", caller, usable_->size (), k_);
     return false;
   }
+  return true;
+}
+
+template <typename PointT> float
+HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
+{
   // Work in spatial (Morton) order: the per-point pass then reads memory in
-  // order. The unordered copies live only in this block, so that they are
+  // order. The unordered copy lives only in this function, so that it is
   // gone before the grid is built (the peak memory of a large cloud).
-  float cell = 0.f;
+  std::vector<Eigen::Vector3f> unordered;
+  unordered.reserve (usable_->size ());
+  for (const auto i : *usable_)
+    unordered.push_back ((*input_)[i].getVector3fMap ());
+  const float cell = PointGrid::suggestCellSize (unordered, k_);
+  const std::vector<int> order =
+      PointGrid::spatialOrder (unordered, cell, static_cast<int> (resolveThreadCount (threads_)));
+  // Repeated positions would fill the k nearest with copies of one
+  // neighbour: only the first of each is used (spatialOrder puts them together).
+  pcl::IndicesPtr ordered (new pcl::Indices);
+  ordered->reserve (usable_->size ());
+  std::size_t duplicates = 0;
+  for (std::size_t i = 0; i < order.size (); ++i)
   {
-    std::vector<Eigen::Vector3f> unordered;
-    unordered.reserve (usable_->size ());
-    for (const auto i : *usable_)
-      unordered.push_back ((*input_)[i].getVector3fMap ());
-    cell = PointGrid::suggestCellSize (unordered, k_);
-    const std::vector<int> order =
-        PointGrid::spatialOrder (unordered, cell, static_cast<int> (resolveThreadCount (threads_)));
-    // Repeated positions would fill the k nearest with copies of one
-    // neighbour: only the first of each is used (spatialOrder puts them together).
-    pcl::IndicesPtr ordered (new pcl::Indices);
-    ordered->reserve (usable_->size ());
-    std::size_t duplicates = 0;
-    for (std::size_t i = 0; i < order.size (); ++i)
+    if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
     {
-      if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
-      {
-        ++duplicates;
-        continue;
-      }
-      ordered->push_back ((*usable_)[order[i]]);
+      ++duplicates;
+      continue;
     }
-    if (duplicates > 0)
-      PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
-                "another.\n", caller, duplicates);
-    usable_ = ordered;
+    ordered->push_back ((*usable_)[order[i]]);
   }
+  if (duplicates > 0)
+    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
+              "another.\n", caller, duplicates);
+  usable_ = ordered;
+  return cell;
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::copyUsablePoints ()
+{
   local_of_.assign (input_->size (), -1);
   positions_.resize (usable_->size ());
   normals_.resize (usable_->size ());
@@ -117,14 +149,6 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
     positions_[i] = p.getVector3fMap ();
     normals_[i] = p.getNormalVector3fMap ().normalized ();
   }
-  if (search_)
-    search_->setInputCloud (input_, usable_);
-  else
-  {
-    grid_.reset (cell);
-    grid_.build (positions_);
-  }
-  return true;
 }
 
 template <typename PointT> void

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <queue>
 
 namespace pcl_holefill
@@ -44,6 +45,115 @@ partFacesInward (const std::vector<int> &part, const std::vector<Eigen::Vector3f
     return outward < 0.f;
   return upward < 0.f;
 }
+
+/** The walk of orientNormalsConsistently over one cloud: reaches points
+  * from reached neighbours, best-agreeing link first, and flips those the
+  * reached neighbours vote against. */
+template <typename PointT>
+class OrientationWalk
+{
+public:
+  OrientationWalk (pcl::PointCloud<PointT> &cloud, std::vector<int> usable, std::vector<Eigen::Vector3f> positions,
+                   int k)
+    : cloud_ (cloud), usable_ (std::move (usable)), positions_ (std::move (positions)), k_ (k),
+      grid_ (PointGrid::suggestCellSize (positions_, k)), reached_ (usable_.size (), 0)
+  {
+    grid_.build (positions_);
+  }
+
+  const std::vector<Eigen::Vector3f> &
+  positions () const { return positions_; }
+
+  /** Orients the part of the cloud connected to \a seed (usable index)
+    * unless reached before; returns how many of its normals were flipped. */
+  std::size_t
+  orientPart (int seed)
+  {
+    if (reached_[seed])
+      return 0;
+    part_.clear ();
+    std::size_t part_flipped = reach (seed, seed) ? 1 : 0;
+    while (!links_.empty ())  // every point is reached once and queues at most k + 1 links
+    {
+      const auto [from, to] = links_.top ().second;
+      links_.pop ();
+      if (!reached_[to])
+        part_flipped += reach (from, to) ? 1 : 0;
+    }
+    auto normal = [this] (int local) { return this->normal (local); };
+    if (partFacesInward (part_, positions_, normal))
+    {
+      for (const int i : part_)
+        this->normal (i) = -this->normal (i);
+      part_flipped = part_.size () - part_flipped;  // the ones not flipped before are now
+    }
+    return part_flipped;
+  }
+
+private:
+  using Link = std::pair<float, std::pair<int, int>>;  // (agreement, (from, to)), best first
+
+  Eigen::Map<Eigen::Vector3f>
+  normal (int local) { return cloud_[usable_[local]].getNormalVector3fMap (); }
+
+  // How much two oriented points agree: the normals' dot product, plus, for
+  // points across a sharp edge (dot near 0), whether each lies on the same
+  // side of the other's tangent plane (both below on a convex edge, both
+  // above on a concave one). Positive: consistent; negative: one is flipped.
+  // The side test counts only as far as the normals are not parallel: for
+  // close points on noisy samples it is mostly noise (it turned a fifth of
+  // a noisy sphere inside out).
+  float
+  agreement (int a, int b)
+  {
+    const Eigen::Vector3f na = normal (a).normalized (), nb = normal (b).normalized ();
+    const Eigen::Vector3f d = positions_[b] - positions_[a];
+    const float length = d.norm ();
+    const float side = length > 0.f ? (d.dot (na) / length) * (-d.dot (nb) / length) : 0.f;
+    const float dot = na.dot (nb);
+    return dot + 2.f * (1.f - std::abs (dot)) * side;
+  }
+
+  // Reaches \a to from the reached \a from: every reached neighbour votes on
+  // its orientation, not only \a from (on noisy samples one close pair's
+  // side test is a coin toss: noise of 0.3 % of the diagonal flipped whole
+  // faces of a cube), and \a from always does (kNN is not symmetric). Then
+  // queues the links to its unreached neighbours; true if it was flipped.
+  bool
+  reach (int from, int to)
+  {
+    grid_.nearestK (positions_[to], k_ + 1, near_);
+    float vote = from == to ? normal (to).z () : 0.f;  // a part's seed: upward
+    bool from_voted = from == to;
+    for (const auto &n : near_)
+      if (reached_[n.id])
+      {
+        vote += agreement (n.id, to);
+        from_voted = from_voted || n.id == from;
+      }
+    if (!from_voted)
+      vote += agreement (from, to);
+    reached_[to] = 1;
+    part_.push_back (to);
+    const bool flip = vote < 0.f;
+    if (flip)
+      normal (to) = -normal (to);
+    for (const auto &n : near_)
+      if (!reached_[n.id])
+        links_.push ({std::abs (agreement (to, n.id)), {to, n.id}});
+    return flip;
+  }
+
+  pcl::PointCloud<PointT> &cloud_;
+  const std::vector<int> usable_;                   //!< cloud index of each oriented point
+  const std::vector<Eigen::Vector3f> positions_;    //!< their positions
+  const int k_;
+  PointGrid grid_;
+  std::vector<char> reached_;
+  std::vector<PointGrid::Neighbour> near_;
+  std::priority_queue<Link> links_;
+  std::vector<int> part_;
+};
 }  // namespace detail
 
 template <typename PointT> std::size_t
@@ -59,84 +169,15 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
     }
   if (usable.empty ())
     return 0;
-  PointGrid grid (PointGrid::suggestCellSize (positions, k));
-  grid.build (positions);
-  auto normal = [&] (int local) { return cloud[usable[local]].getNormalVector3fMap (); };
-
-  // How much two oriented points agree: the normals' dot product, plus, for
-  // points across a sharp edge (dot near 0), whether each lies on the same
-  // side of the other's tangent plane (both below on a convex edge, both
-  // above on a concave one). Positive: consistent; negative: one is flipped.
-  // The side test counts only as far as the normals are not parallel: for
-  // close points on noisy samples it is mostly noise (it turned a fifth of
-  // a noisy sphere inside out).
-  auto agreement = [&] (int a, int b) {
-    const Eigen::Vector3f na = normal (a).normalized (), nb = normal (b).normalized ();
-    const Eigen::Vector3f d = positions[b] - positions[a];
-    const float length = d.norm ();
-    const float side = length > 0.f ? (d.dot (na) / length) * (-d.dot (nb) / length) : 0.f;
-    const float dot = na.dot (nb);
-    return dot + 2.f * (1.f - std::abs (dot)) * side;
-  };
-  std::vector<char> reached (usable.size (), 0);
+  detail::OrientationWalk<PointT> walk (cloud, std::move (usable), std::move (positions), k);
   // Seeds in order of decreasing z: each unreached one starts a new part.
-  std::vector<int> seeds (usable.size ());
-  for (std::size_t i = 0; i < seeds.size (); ++i)
-    seeds[i] = static_cast<int> (i);
-  std::sort (seeds.begin (), seeds.end (), [&] (int a, int b) { return positions[a].z () > positions[b].z (); });
+  const auto &at = walk.positions ();
+  std::vector<int> seeds (at.size ());
+  std::iota (seeds.begin (), seeds.end (), 0);
+  std::sort (seeds.begin (), seeds.end (), [&] (int a, int b) { return at[a].z () > at[b].z (); });
   std::size_t flipped = 0;
-  std::vector<PointGrid::Neighbour> near;
-  using Link = std::pair<float, std::pair<int, int>>;  // (agreement, (from, to)), best first
-  std::priority_queue<Link> links;
-  std::vector<int> part;
-  // Reaches \a to from the reached \a from: every reached neighbour votes on
-  // its orientation, not only \a from (on noisy samples one close pair's
-  // side test is a coin toss: noise of 0.3 % of the diagonal flipped whole
-  // faces of a cube), and \a from always does (kNN is not symmetric). Then
-  // queues the links to its unreached neighbours; true if it was flipped.
-  auto reach = [&] (int from, int to) {
-    grid.nearestK (positions[to], k + 1, near);
-    float vote = from == to ? normal (to).z () : 0.f;  // a part's seed: upward
-    bool from_voted = from == to;
-    for (const auto &n : near)
-      if (reached[n.id])
-      {
-        vote += agreement (n.id, to);
-        from_voted = from_voted || n.id == from;
-      }
-    if (!from_voted)
-      vote += agreement (from, to);
-    reached[to] = 1;
-    part.push_back (to);
-    const bool flip = vote < 0.f;
-    if (flip)
-      normal (to) = -normal (to);
-    for (const auto &n : near)
-      if (!reached[n.id])
-        links.push ({std::abs (agreement (to, n.id)), {to, n.id}});
-    return flip;
-  };
   for (const int seed : seeds)
-  {
-    if (reached[seed])
-      continue;
-    part.clear ();
-    std::size_t part_flipped = reach (seed, seed) ? 1 : 0;
-    while (!links.empty ())  // every point is reached once and queues at most k + 1 links
-    {
-      const auto [from, to] = links.top ().second;
-      links.pop ();
-      if (!reached[to])
-        part_flipped += reach (from, to) ? 1 : 0;
-    }
-    if (detail::partFacesInward (part, positions, normal))
-    {
-      for (const int i : part)
-        normal (i) = -normal (i);
-      part_flipped = part.size () - part_flipped;  // the ones not flipped before are now
-    }
-    flipped += part_flipped;
-  }
+    flipped += walk.orientPart (seed);
   return flipped;
 }
 

@@ -8,6 +8,7 @@
 #include "shapes.h"
 
 #include <pcl/common/io.h>
+#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
@@ -209,6 +210,120 @@ TEST_F (Command, ReadsAPlyWhoseFacesComeBeforeItsVertices)
     for (std::size_t i = 0; i < kept.size (); ++i)
       ASSERT_EQ (filled[i].getVector3fMap (), kept[i].getVector3fMap ()) << i;
   }
+}
+
+namespace
+{
+/** A binary PLY of \a cloud moved by \a offset: double x y z, float normals,
+  * an int label above float's 24 bits and a double time per point. */
+void
+writeTypedPly (const std::string &file, const pcl::PointCloud<pcl::PointNormal> &cloud, const Eigen::Vector3d &offset)
+{
+  std::ofstream out (file, std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\nelement vertex " << cloud.size ()
+      << "\nproperty double x\nproperty double y\nproperty double z\nproperty float nx\nproperty float ny\n"
+      << "property float nz\nproperty int label\nproperty double gps_time\nend_header\n";
+  const auto binary = [&out] (const auto &value) { out.write (reinterpret_cast<const char *> (&value), sizeof (value)); };
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+  {
+    for (int d = 0; d < 3; ++d)
+      binary (static_cast<double> (cloud[i].data[d]) + offset[d]);
+    for (int d = 0; d < 3; ++d)
+      binary (cloud[i].data_n[d]);
+    binary (static_cast<std::int32_t> (20000000 + i));
+    binary (1.6e9 + 1e-6 * static_cast<double> (i));
+  }
+}
+
+template <typename T>
+T
+fieldValue (const pcl::PCLPointCloud2 &cloud, std::size_t row, const std::string &name)
+{
+  const auto &field = cloud.fields[pcl::getFieldIndex (cloud, name)];
+  T value;
+  std::memcpy (&value, cloud.data.data () + row * cloud.point_step + field.offset, sizeof (T));
+  return value;
+}
+}  // namespace
+
+// Map coordinates (float32 keeps 7 digits: 0.5 m at y = 5.4e6) and fields
+// float cannot hold. Before: 3 points filled instead of 326, labels above
+// 16.8 million changed, the times collapsed. The fill runs around the
+// cloud's centre, and every field keeps its type in PLY and PCD.
+TEST_F (Command, GeoreferencedCloudsFillAsAtTheOriginAndKeepEveryField)
+{
+  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);  // PCL's PLY reader on the camera element
+  // The same case twice: centred on (0, 0, 0), and moved to map coordinates.
+  Eigen::AlignedBox3d box;
+  for (const auto &p : cut_.kept)
+    box.extend (p.getVector3fMap ().cast<double> ());
+  const Eigen::Vector3d offset (512345.678, 5401234.567, 312.5);
+  writeTypedPly (path ("local.ply"), cut_.kept, -box.center ());
+  writeTypedPly (path ("geo.ply"), cut_.kept, offset - box.center ());
+  for (const char *format : {"pcd", "ply"})
+  {
+    const std::string local_out = path (std::string ("local_out.") + format);
+    const std::string geo_out = path (std::string ("geo_out.") + format);
+    ASSERT_EQ (run (path ("local.ply") + " " + local_out + " -q"), 0) << stderrText ();
+    ASSERT_EQ (run (path ("geo.ply") + " " + geo_out + " -q"), 0) << stderrText ();
+    pcl::PCLPointCloud2 local, geo;
+    ASSERT_EQ (std::string (format) == "pcd" ? pcl::io::loadPCDFile (geo_out, geo) : pcl::io::loadPLYFile (geo_out, geo), 0);
+    ASSERT_EQ (std::string (format) == "pcd" ? pcl::io::loadPCDFile (local_out, local)
+                                             : pcl::io::loadPLYFile (local_out, local), 0);
+    for (const char *name : {"x", "gps_time"})
+      EXPECT_EQ (geo.fields[pcl::getFieldIndex (geo, name)].datatype, pcl::PCLPointField::FLOAT64) << format;
+    EXPECT_EQ (geo.fields[pcl::getFieldIndex (geo, "label")].datatype, pcl::PCLPointField::INT32) << format;
+    const std::size_t n = cut_.kept.size ();
+    ASSERT_EQ (geo.width, local.width) << format;
+    ASSERT_GT (geo.width, n + 100) << format;  // reached: 9192-point cube, a corner of 0.2 cut
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ASSERT_EQ (fieldValue<double> (geo, i, "y"), static_cast<double> (cut_.kept[i].y) + offset.y () - box.center ().y ())
+          << i;
+      ASSERT_EQ (fieldValue<std::int32_t> (geo, i, "label"), static_cast<std::int32_t> (20000000 + i));
+      ASSERT_EQ (fieldValue<double> (geo, i, "gps_time"), 1.6e9 + 1e-6 * static_cast<double> (i));
+    }
+    double worst = 0.0, off_surface = 0.0;
+    for (std::size_t i = n; i < geo.width; ++i)
+    {
+      Eigen::Vector3d g, l;
+      for (int d = 0; d < 3; ++d)
+      {
+        const std::string axis (1, "xyz"[d]);
+        g[d] = fieldValue<double> (geo, i, axis) - offset[d];
+        l[d] = fieldValue<double> (local, i, axis);
+      }
+      worst = std::max (worst, (g - l).norm ());
+      off_surface = std::max (off_surface, shapes::cube ().distance (g + box.center ()));
+    }
+    EXPECT_LT (worst, 1e-4 * std::sqrt (3.0)) << format;  // reached: 0 (the same floats in the local frame)
+    EXPECT_LT (off_surface, 0.003) << format;              // reached: 0.0015
+  }
+  // A text cloud in map coordinates: every number read back as written.
+  {
+    std::ofstream text (path ("geo.xyz"));
+    text << std::fixed << std::setprecision (3);
+    for (std::size_t i = 0; i < cut_.kept.size (); ++i)
+    {
+      const auto &p = cut_.kept[i];
+      text << p.x + offset.x () << ' ' << p.y + offset.y () << ' ' << p.z + offset.z () << ' ' << 20000000 + i << '\n';
+    }
+  }
+  ASSERT_EQ (run (path ("geo.xyz") + " " + path ("geo_out.xyz") + " -q"), 0) << stderrText ();
+  std::ifstream in (path ("geo.xyz")), out (path ("geo_out.xyz"));
+  std::size_t rows = 0;
+  for (std::string line_in, line_out; std::getline (in, line_in) && std::getline (out, line_out); ++rows)
+  {
+    std::istringstream a (line_in), b (line_out);
+    double x, y, z, label, bx, by, bz, bnx, bny, bnz, blabel;
+    a >> x >> y >> z >> label;
+    b >> bx >> by >> bz >> bnx >> bny >> bnz >> blabel;  // x y z, the estimated normals, then the other columns
+    ASSERT_EQ (x, bx) << rows;
+    ASSERT_EQ (y, by) << rows;
+    ASSERT_EQ (z, bz) << rows;
+    ASSERT_EQ (label, blabel) << rows;
+  }
+  EXPECT_EQ (rows, cut_.kept.size ());
 }
 
 TEST_F (Command, BadInputGetsOneLineAndANonZeroExit)

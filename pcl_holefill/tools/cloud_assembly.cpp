@@ -24,17 +24,54 @@ constexpr float kMinNormalLength = 1e-3f;
 // Fewer usable normals than this share of the finite points: estimate them all.
 constexpr double kMinUsableNormalShare = 0.5;
 
-bool
-hasFloatField (const pcl::PCLPointCloud2 &cloud, const std::string &name)
+/** The field \a name if it holds one float or double per point, else null. */
+const pcl::PCLPointField *
+realField (const pcl::PCLPointCloud2 &cloud, const std::string &name)
 {
   const int i = pcl::getFieldIndex (cloud, name);
-  return i >= 0 && cloud.fields[i].datatype == pcl::PCLPointField::FLOAT32 && cloud.fields[i].count == 1;
+  if (i < 0 || cloud.fields[i].count != 1)
+    return nullptr;
+  const auto type = cloud.fields[i].datatype;
+  return type == pcl::PCLPointField::FLOAT32 || type == pcl::PCLPointField::FLOAT64 ? &cloud.fields[i] : nullptr;
 }
 
-std::uint32_t
-offsetOf (const pcl::PCLPointCloud2 &cloud, const std::string &name)
+/** The three fields \a names (x, y, z or the normal's) if all are real. */
+bool
+realFields (const pcl::PCLPointCloud2 &cloud, const char *const names[3], const pcl::PCLPointField *fields[3])
 {
-  return cloud.fields[pcl::getFieldIndex (cloud, name)].offset;
+  for (int d = 0; d < 3; ++d)
+    if (!(fields[d] = realField (cloud, names[d])))
+      return false;
+  return true;
+}
+
+const char *const kPositionNames[3] = {"x", "y", "z"};
+const char *const kNormalNames[3] = {"normal_x", "normal_y", "normal_z"};
+
+double
+readReal (const std::uint8_t *row, const pcl::PCLPointField &field)
+{
+  if (field.datatype == pcl::PCLPointField::FLOAT64)
+  {
+    double v;
+    std::memcpy (&v, row + field.offset, sizeof (v));
+    return v;
+  }
+  float v;
+  std::memcpy (&v, row + field.offset, sizeof (v));
+  return v;
+}
+
+void
+writeReal (std::uint8_t *row, const pcl::PCLPointField &field, double value)
+{
+  if (field.datatype == pcl::PCLPointField::FLOAT64)
+    std::memcpy (row + field.offset, &value, sizeof (value));
+  else
+  {
+    const float v = static_cast<float> (value);
+    std::memcpy (row + field.offset, &v, sizeof (v));
+  }
 }
 
 /** One field named \a name of PCL type \a datatype, a value per point. */
@@ -84,27 +121,53 @@ checkLayout (const pcl::PCLPointCloud2 &file_cloud, std::string &error)
     error = "the cloud has less data than points";
     return false;
   }
-  if (!hasFloatField (file_cloud, "x") || !hasFloatField (file_cloud, "y") || !hasFloatField (file_cloud, "z"))
+  const pcl::PCLPointField *xyz[3];
+  if (!realFields (file_cloud, kPositionNames, xyz))
   {
-    error = "the cloud has no float x, y, z fields";
+    error = "the cloud has no float or double x, y, z fields";
     return false;
   }
   return true;
 }
 
-/** The positions into prepared.points; counts the finite ones. */
+/** Where the fill's frame lies. Float32 keeps about 7 digits: map
+  * coordinates (x = 512345.678 m) would lose centimetres, and the fill would
+  * run on rounded data. A cloud farther from (0, 0, 0) than its own size is
+  * filled around the centre of its bounding box; one nearer, where it is (its
+  * float coordinates lose nothing there, and its fill stays as it was). */
+Eigen::Vector3d
+localOrigin (const Eigen::AlignedBox3d &box)
+{
+  if (box.isEmpty () || box.center ().norm () <= box.diagonal ().norm ())
+    return Eigen::Vector3d::Zero ();
+  return box.center ();
+}
+
+/** The positions into prepared.points, in the local frame (prepared.origin);
+  * counts the finite ones. */
 void
 readPositions (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
 {
-  pcl::PointCloud<pcl::PointXYZ> xyz;
-  pcl::fromPCLPointCloud2 (file_cloud, xyz);
-  prepared.points->resize (xyz.size ());
+  const pcl::PCLPointField *xyz[3];
+  realFields (file_cloud, kPositionNames, xyz);
+  const std::size_t points = static_cast<std::size_t> (file_cloud.width) * file_cloud.height;
+  std::vector<Eigen::Vector3d> positions (points);
+  Eigen::AlignedBox3d box;
   prepared.finite_points = 0;
-  for (std::size_t i = 0; i < xyz.size (); ++i)
+  for (std::size_t i = 0; i < points; ++i)
   {
-    (*prepared.points)[i].getVector3fMap () = xyz[i].getVector3fMap ();
-    prepared.finite_points += std::isfinite (xyz[i].x) && std::isfinite (xyz[i].y) && std::isfinite (xyz[i].z);
+    const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
+    positions[i] = Eigen::Vector3d (readReal (row, *xyz[0]), readReal (row, *xyz[1]), readReal (row, *xyz[2]));
+    if (positions[i].allFinite ())
+    {
+      box.extend (positions[i]);
+      ++prepared.finite_points;
+    }
   }
+  prepared.origin = localOrigin (box);
+  prepared.points->resize (points);
+  for (std::size_t i = 0; i < points; ++i)
+    (*prepared.points)[i].getVector3fMap () = (positions[i] - prepared.origin).cast<float> ();
 }
 
 /** The file's normals into prepared.points, read field by field (PCL's
@@ -114,16 +177,15 @@ std::size_t
 readNormals (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
 {
   std::size_t usable_normals = 0;
-  const std::uint32_t n[3] = {offsetOf (file_cloud, "normal_x"), offsetOf (file_cloud, "normal_y"),
-                              offsetOf (file_cloud, "normal_z")};
+  const pcl::PCLPointField *n[3];
+  realFields (file_cloud, kNormalNames, n);
   for (std::size_t i = 0; i < prepared.points->size (); ++i)
   {
     const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
-    float v[3];
-    for (int k = 0; k < 3; ++k)
-      std::memcpy (&v[k], row + n[k], sizeof (float));
-    (*prepared.points)[i].getNormalVector3fMap () = Eigen::Vector3f (v[0], v[1], v[2]);
-    const float length = Eigen::Vector3f (v[0], v[1], v[2]).norm ();
+    const Eigen::Vector3f v =
+        Eigen::Vector3d (readReal (row, *n[0]), readReal (row, *n[1]), readReal (row, *n[2])).cast<float> ();
+    (*prepared.points)[i].getNormalVector3fMap () = v;
+    const float length = v.norm ();
     usable_normals += std::isfinite (length) && length > kMinNormalLength ? 1 : 0;
   }
   return usable_normals;
@@ -170,8 +232,8 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
     error = "the cloud has no finite point";
     return false;
   }
-  const bool has_normals = hasFloatField (file_cloud, "normal_x") && hasFloatField (file_cloud, "normal_y") &&
-                           hasFloatField (file_cloud, "normal_z");
+  const pcl::PCLPointField *normal_fields[3];
+  const bool has_normals = realFields (file_cloud, kNormalNames, normal_fields);
   const std::size_t usable_normals = has_normals ? readNormals (file_cloud, prepared) : 0;
   // Normals that are mostly 0 0 0 or not finite (how some tools write "no
   // normal") are estimated for the fill; the input rows keep theirs.
@@ -207,8 +269,12 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   // deep in a large hole (24 s for 21,000 filled points in 225,000).
   pcl::search::KdTree<pcl::PointNormal> search;
   search.setInputCloud (prepared.points);
-  const std::uint32_t xyz[3] = {offsetOf (rows, "x"), offsetOf (rows, "y"), offsetOf (rows, "z")};
-  const std::uint32_t nxyz[3] = {offsetOf (rows, "normal_x"), offsetOf (rows, "normal_y"), offsetOf (rows, "normal_z")};
+  const pcl::PCLPointField *xyz[3], *nxyz[3];
+  if (!realFields (rows, kPositionNames, xyz) || !realFields (rows, kNormalNames, nxyz))
+  {
+    error = "the cloud's position or normal fields are not float or double";
+    return false;
+  }
   pcl::Indices nearest;
   std::vector<float> sqr_distances;
   for (std::size_t k = 0; k < added; ++k)
@@ -219,8 +285,8 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
       std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[0]) * step, step);
     for (int d = 0; d < 3; ++d)
     {
-      std::memcpy (row + xyz[d], &p.data[d], sizeof (float));
-      std::memcpy (row + nxyz[d], &p.data_n[d], sizeof (float));
+      writeReal (row, *xyz[d], static_cast<double> (p.data[d]) + prepared.origin[d]);
+      writeReal (row, *nxyz[d], p.data_n[d]);
     }
   }
   rows.width = static_cast<std::uint32_t> (input_points + added);

@@ -18,7 +18,11 @@ namespace pcl_holefill_tool
 struct PreparedCloud
 {
   pcl::PCLPointCloud2 fields;                              //!< every field of the file (+ normals if estimated)
-  pcl::PointCloud<pcl::PointNormal>::Ptr points;           //!< xyz and normals, same order
+  pcl::PointCloud<pcl::PointNormal>::Ptr points;           //!< xyz (minus origin) and normals, same order
+  /** The local frame: points = the file's positions - origin, the centre
+    * of their bounding box when the cloud lies farther from (0, 0, 0) than
+    * its size, else zero. */
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
   bool normals_estimated = false;                          //!< points carry estimated normals
   bool normals_unusable = false;                           //!< the file had normals, mostly zero or not finite
   std::size_t finite_points = 0;

@@ -110,6 +110,9 @@ plainName (const std::string &name)
   return std::all_of (name.begin (), name.end (), [] (unsigned char c) { return std::isalnum (c) || c == '_'; });
 }
 
+bool
+storeValue (double v, std::uint8_t datatype, std::uint8_t *out);
+
 /** A number of an ascii body as the bytes of a field of type \a datatype. */
 bool
 storeNumber (const std::string &word, std::uint8_t datatype, std::uint8_t *out)
@@ -118,6 +121,13 @@ storeNumber (const std::string &word, std::uint8_t datatype, std::uint8_t *out)
   const double v = std::strtod (word.c_str (), &end);
   if (end == word.c_str () || *end != '\0')
     return false;
+  return storeValue (v, datatype, out);
+}
+
+/** \a v as the bytes of a field of type \a datatype (integers clamped to their range, NaN as 0). */
+bool
+storeValue (double v, std::uint8_t datatype, std::uint8_t *out)
+{
   auto put = [out] (auto value) { std::memcpy (out, &value, sizeof (value)); };
   auto integral = [&v] (double lo, double hi) { return std::isnan (v) ? 0.0 : std::min (hi, std::max (lo, v)); };
   switch (datatype)
@@ -595,14 +605,15 @@ private:
 /** Where each vertex property goes in the cloud's point. */
 struct PlyLayout
 {
-  std::vector<int> slot;  //!< property -> float slot, -1 if not stored
+  std::vector<std::int64_t> offset;  //!< property -> byte offset in the point, -1 if not stored
   int colour[3] = {-1, -1, -1};
   bool packed_rgb = false;
   std::uint32_t rgb_offset = 0;
   std::uint32_t point_step = 0;
 };
 
-/** The cloud's fields: the vertex's scalar properties as floats, colours packed into rgb. */
+/** The cloud's fields: the vertex's scalar properties in their own types
+  * (a double stays a double, an int an int), colours packed into rgb. */
 bool
 plyLayout (const std::vector<PlyProperty> &properties, pcl::PCLPointCloud2 &cloud, PlyLayout &layout,
            std::string &reason)
@@ -626,17 +637,17 @@ plyLayout (const std::vector<PlyProperty> &properties, pcl::PCLPointCloud2 &clou
     layout.packed_rgb = layout.packed_rgb && layout.colour[c] >= 0 &&
                         properties[layout.colour[c]].datatype == pcl::PCLPointField::UINT8;
   }
-  const auto add_field = [&cloud, &layout] (const std::string &name) {
+  const auto add_field = [&cloud, &layout] (const std::string &name, std::uint8_t datatype) {
     pcl::PCLPointField field;
     field.name = name;
     field.offset = layout.point_step;
-    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.datatype = datatype;
     field.count = 1;
     cloud.fields.push_back (field);
-    layout.point_step += 4;
+    layout.point_step += static_cast<std::uint32_t> (pcl::getFieldSize (datatype));
   };
   cloud = pcl::PCLPointCloud2 ();
-  layout.slot.assign (properties.size (), -1);
+  layout.offset.assign (properties.size (), -1);
   for (std::size_t i = 0; i < properties.size (); ++i)
   {
     const int self = static_cast<int> (i);
@@ -648,13 +659,13 @@ plyLayout (const std::vector<PlyProperty> &properties, pcl::PCLPointCloud2 &clou
       name = std::string ("normal_") + name[1];
     if (std::any_of (cloud.fields.begin (), cloud.fields.end (), [&name] (const auto &f) { return f.name == name; }))
       continue;  // a repeated name: the first one counts
-    layout.slot[i] = static_cast<int> (layout.point_step / 4);
-    add_field (name);
+    layout.offset[i] = layout.point_step;
+    add_field (name, properties[i].datatype);
   }
   if (layout.packed_rgb)
   {
     layout.rgb_offset = layout.point_step;
-    add_field ("rgb");
+    add_field ("rgb", pcl::PCLPointField::FLOAT32);
   }
   return true;
 }
@@ -681,11 +692,8 @@ readPlyVertex (PlyBody &body, const std::vector<PlyProperty> &properties, const 
     for (int c = 0; c < 3; ++c)
       if (layout.packed_rgb && static_cast<int> (i) == layout.colour[c])
         rgb[c] = static_cast<std::uint8_t> (std::min (255.0, std::max (0.0, value)));
-    if (layout.slot[i] >= 0)
-    {
-      const float f = static_cast<float> (value);
-      std::memcpy (point + 4 * layout.slot[i], &f, 4);
-    }
+    if (layout.offset[i] >= 0)
+      storeValue (value, properties[i].datatype, point + layout.offset[i]);
   }
   if (layout.packed_rgb)
   {

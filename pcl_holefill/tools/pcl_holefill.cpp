@@ -159,7 +159,7 @@ run (const Options &options)
   if (!options.report_file.empty ())
   {
     std::ofstream report (options.report_file);
-    report << reportJson (options.input, prepared.points->size (), filler.getReports ());
+    report << reportJson (options.input, prepared.points->size (), filler.getReports (), prepared.origin);
     if (!report)
       return fail ("cannot write '" + options.report_file + "'");
   }

@@ -5,6 +5,7 @@
 #include "report_json.h"
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace pcl_holefill_tool
@@ -37,10 +38,21 @@ indexList (const pcl::Indices &indices)
   out << ']';
   return out.str ();
 }
+/** "[x, y, z]" of \a local + \a origin, to the digits map coordinates need. */
+std::string
+coordinates (const Eigen::Vector3f &local, const Eigen::Vector3d &origin)
+{
+  constexpr int kSignificantDigits = 12;  // 1 mm at 1e8 m
+  const Eigen::Vector3d p = local.cast<double> () + origin;
+  std::ostringstream out;
+  out << std::setprecision (kSignificantDigits) << '[' << p.x () << ", " << p.y () << ", " << p.z () << ']';
+  return out.str ();
+}
 }  // namespace
 
 std::string
-reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports)
+reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports,
+            const Eigen::Vector3d &origin)
 {
   std::size_t filled = 0;
   for (const auto &r : reports)
@@ -57,8 +69,8 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << pcl_holefill::toString (r.termination) << "\", \"closed\": " << (r.closed ? "true" : "false")
         << ", \"spacing\": " << r.spacing << ", \"equilibrium_distance\": " << r.equilibrium_distance
         << ", \"open_points\": " << r.open_points << ", \"open_diameter\": " << r.open_diameter
-        << ", \"outside_bound\": " << r.outside_bound << ", \"centre\": [" << r.centre.x () << ", "
-        << r.centre.y () << ", " << r.centre.z () << "], \"pitch\": " << r.pitch
+        << ", \"outside_bound\": " << r.outside_bound << ", \"centre\": " << coordinates (r.centre, origin)
+        << ", \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
         << ", \"first_order\": " << (r.first_order ? "true" : "false") << ", \"sigma_n\": ";
     if (std::isinf (r.sigma_n))

@@ -7,14 +7,18 @@
 #include <pcl_holefill/boundary_loop.h>
 #include <pcl_holefill/hole_report.h>
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
 namespace pcl_holefill_tool
 {
-/** \brief The per-hole reports as a JSON document. */
+/** \brief The per-hole reports as a JSON document; centres in the file's
+  * frame (\a origin: where the fill's local frame lies in it). */
 std::string
-reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports);
+reportJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::HoleReport> &reports,
+            const Eigen::Vector3d &origin = Eigen::Vector3d::Zero ());
 
 /** \brief Every loop detection found (holes and borders) as a JSON document:
   * hole or border, closed, diameter, length, spacing, pitch and the indices. */

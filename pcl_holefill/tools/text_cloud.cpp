@@ -183,24 +183,42 @@ readText (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &erro
   {
     pcl::PCLPointField field;
     field.name = names[c];
-    field.offset = static_cast<std::uint32_t> (4 * c);
-    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.offset = static_cast<std::uint32_t> (sizeof (double) * c);
+    field.datatype = pcl::PCLPointField::FLOAT64;  // map coordinates need more than float's 7 digits
     field.count = 1;
     cloud.fields.push_back (field);
   }
   cloud.width = static_cast<std::uint32_t> (rows);
   cloud.height = 1;
-  cloud.point_step = static_cast<std::uint32_t> (4 * columns);
+  cloud.point_step = static_cast<std::uint32_t> (sizeof (double) * columns);
   cloud.row_step = cloud.point_step * cloud.width;
   cloud.is_dense = false;
   cloud.data.resize (rows * cloud.point_step);
-  for (std::size_t i = 0; i < table.size (); ++i)
-  {
-    const float v = static_cast<float> (table[i]);
-    std::memcpy (cloud.data.data () + 4 * i, &v, sizeof (float));
-  }
+  std::memcpy (cloud.data.data (), table.data (), table.size () * sizeof (double));
   return true;
 }
+
+namespace
+{
+/** Writes \a value with the fewest digits that read back to the same value
+  * of its field's type: a float up to 9, a double up to 17, an integer all. */
+void
+printNumber (std::FILE *out, double value, std::uint8_t datatype, bool first)
+{
+  const bool is_float = datatype == pcl::PCLPointField::FLOAT32;
+  const bool is_double = datatype == pcl::PCLPointField::FLOAT64;
+  auto same = [&] (double back) {
+    return std::isnan (value) || (is_float ? static_cast<float> (back) == static_cast<float> (value) : back == value);
+  };
+  char text[64];
+  int digits = is_float ? 7 : is_double ? 15 : 17;
+  const int most = is_float ? 9 : 17;
+  std::snprintf (text, sizeof (text), "%.*g", digits, value);
+  while (digits < most && !same (std::strtod (text, nullptr)))
+    std::snprintf (text, sizeof (text), "%.*g", ++digits, value);
+  std::fprintf (out, first ? "%s" : " %s", text);
+}
+}  // namespace
 
 bool
 writeText (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string &error)
@@ -234,8 +252,8 @@ writeText (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::strin
     const std::uint8_t *row = cloud.data.data () + i * cloud.point_step;
     for (std::size_t k = 0; k < order.size (); ++k)
     {
-      const double value = numberAt (row + cloud.fields[order[k]].offset, cloud.fields[order[k]].datatype);
-      std::fprintf (out.get (), k ? " %.9g" : "%.9g", value);
+      const auto &field = cloud.fields[order[k]];
+      printNumber (out.get (), numberAt (row + field.offset, field.datatype), field.datatype, k == 0);
     }
     std::fputc ('\n', out.get ());
   }

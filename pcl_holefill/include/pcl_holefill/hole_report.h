@@ -43,7 +43,7 @@ struct HoleReport
   float pitch = 0.f;                   //!< sampling pitch around the rim, sqrt(area per point)
   float equilibrium_distance = 0.f;    //!< d_eq used
   float radius = 0.f;                  //!< r of the first pass
-  float noise = 0.f;                   //!< RMS distance of the rim's neighbours to their fitted plane
+  float noise = 0.f;                   //!< the rim's noise: RMS height of its neighbours over their fitted quadric
   float normal_spread = 0.f;           //!< median |n_p - n_q| between close rim neighbours (curvature, normal noise)
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
   float sigma_n = 0.f;                 //!< sigma_n used (chosen per hole when automatic; kSup = off)

@@ -147,14 +147,24 @@ def _call(function, *args):
 def _frame(points):
     """float32 coordinates to compute on, and the shift back to the input's frame.
 
-    float64 input is shifted to its centre first, so that georeferenced
+    float64 input is shifted to its mean first, so that georeferenced
     coordinates (x = 512345.678 m) keep their precision in the float32
-    computation; float32 input is used as it is."""
+    computation. float32 input is shifted as the command shifts a file: to
+    the centre of its bounding box when it lies farther from the origin than
+    its own size (its values are exact, but their differences would round),
+    else not at all, so that module and command give the same points."""
+    finite = np.isfinite(points).all(axis=1)
+    if not finite.any():
+        return np.ascontiguousarray(points, dtype=np.float32), np.zeros(3)
+    kept = points[finite].astype(np.float64)
     if points.dtype == np.float64:
-        finite = np.isfinite(points).all(axis=1)
-        centre = points[finite].mean(axis=0) if finite.any() else np.zeros(3)
-        return (points - centre).astype(np.float32), centre
-    return np.ascontiguousarray(points, dtype=np.float32), np.zeros(3)
+        centre = kept.mean(axis=0)
+    else:
+        low, high = kept.min(axis=0), kept.max(axis=0)
+        centre = (low + high) / 2
+        if np.linalg.norm(centre) <= np.linalg.norm(high - low):
+            return np.ascontiguousarray(points, dtype=np.float32), np.zeros(3)
+    return np.ascontiguousarray(points.astype(np.float64) - centre, dtype=np.float32), centre
 
 
 def _checked_input(points, normals):

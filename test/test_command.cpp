@@ -4,8 +4,11 @@
  *
  * The pcl_holefill command, run as a user would run it.
  */
+#include "hole_pictures.h"
 #include "render.h"
 #include "shapes.h"
+
+#include <pcl_holefill/hole_filling.h>
 
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
@@ -598,4 +601,55 @@ TEST (Render, StrayPointsDoNotShrinkThePicture)
     drawn += image.rgb[k] != 255 || image.rgb[k + 1] != 255 || image.rgb[k + 2] != 255;
   // reached: 77 % of the pixels (the frame keeps a margin; before: a few pixels)
   EXPECT_GT (drawn, 0.6 * 200 * 200);
+}
+
+namespace
+{
+/** Pixels of \a image whose colour is the shaded form of \a colour: the hue
+  * kept (each channel in proportion), whatever the light. */
+std::size_t
+pixelsOfHue (const pcl_holefill_tool::Image &image, const Eigen::Vector3f &colour)
+{
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < image.rgb.size (); k += 3)
+  {
+    const Eigen::Vector3f pixel (image.rgb[k], image.rgb[k + 1], image.rgb[k + 2]);
+    if (pixel.norm () > 20.f && pixel.normalized ().dot (colour.normalized ()) > 0.99f)
+      ++count;
+  }
+  return count;
+}
+}  // namespace
+
+// -png: the overview marks each hole's rim, and each hole gets a close-up
+// from outside the surface, rim and fill in their colours; a hole left open
+// is marked red.
+TEST (Render, EachHoleGetsAMarkedRimAndACloseUp)
+{
+  using pcl_holefill_tool::HoleColours;
+  const auto cut = shapes::cutHoles (shapes::sphere ().sample (20000), {{{0.5, 0.5, 1.0}, 0.12}, {{1.0, 0.5, 0.5}, 0.12}});
+  const pcl::PointCloud<pcl::PointNormal>::Ptr kept (new pcl::PointCloud<pcl::PointNormal> (cut.kept));
+  pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+  filler.setInputCloud (kept);
+  pcl::PointCloud<pcl::PointNormal> output;
+  filler.filter (output);
+  auto reports = filler.getReports ();
+  ASSERT_EQ (reports.size (), 2u);
+  const auto picture = pcl_holefill_tool::holePicture (output, kept->size (), reports);
+  EXPECT_EQ (picture.height, 480 + 240);  // the overview, then one row of close-ups
+  EXPECT_EQ (picture.width, 960);
+  EXPECT_GT (pixelsOfHue (picture, HoleColours::closedRim ()), 2000u);  // reached: 9042
+  EXPECT_GT (pixelsOfHue (picture, HoleColours::fill ()), 8000u);       // reached: 32713
+  EXPECT_EQ (pixelsOfHue (picture, HoleColours::openRim ()), 0u);
+  // Each close-up shows its hole from outside: the fill in its middle.
+  for (int c = 0; c < 2; ++c)
+  {
+    const int x = c * 240 + 120, y = 480 + 120;
+    const std::size_t k = 3 * (static_cast<std::size_t> (y) * picture.width + x);
+    const Eigen::Vector3f middle (picture.rgb[k], picture.rgb[k + 1], picture.rgb[k + 2]);
+    EXPECT_GT (middle.normalized ().dot (HoleColours::fill ().normalized ()), 0.99f) << c << ": " << middle.transpose ();
+  }
+  reports[1].closed = false;
+  const auto marked = pcl_holefill_tool::holePicture (output, kept->size (), reports);
+  EXPECT_GT (pixelsOfHue (marked, HoleColours::openRim ()), 1000u);
 }

@@ -9,6 +9,7 @@
 #include "cloud_file.h"
 #include "demo.h"
 #include "fill_options.h"
+#include "hole_pictures.h"
 #include "render.h"
 #include "report_json.h"
 
@@ -37,15 +38,9 @@ fail (const std::string &message, int code = 1)
 
 bool
 writePicture (const Options &options, const pcl::PointCloud<pcl::PointNormal> &output, std::size_t input_points,
-              std::string &error)
+              const std::vector<pcl_holefill::HoleReport> &reports, std::string &error)
 {
-  std::vector<Splat> splats;
-  for (std::size_t i = 0; i < output.size (); ++i)
-    splats.push_back ({output[i].getVector3fMap (), output[i].getNormalVector3fMap (),
-                       i < input_points ? Eigen::Vector3f (0.78f, 0.78f, 0.8f) : Eigen::Vector3f (1.f, 0.55f, 0.1f)});
-  const Image picture = sideBySide ({renderSplats (splats, Eigen::Vector3f (-1.f, -1.f, -0.8f), 480),
-                                     renderSplats (splats, Eigen::Vector3f (1.f, 1.f, 0.8f), 480)});
-  return savePng (picture, options.png_file, error);
+  return savePng (holePicture (output, input_points, reports), options.png_file, error);
 }
 
 /** Whether \a path can be written (an existing file, or a new one in an
@@ -163,7 +158,8 @@ run (const Options &options)
     if (!report)
       return fail ("cannot write '" + options.report_file + "'");
   }
-  if (!options.png_file.empty () && !writePicture (options, filtered, prepared.points->size (), error))
+  if (!options.png_file.empty () &&
+      !writePicture (options, filtered, prepared.points->size (), filler.getReports (), error))
     return fail (error);
   if (!options.quiet)
     std::fprintf (stderr, "pcl_holefill: %zu holes, %zu points added, wrote %s in %.2f s\n",

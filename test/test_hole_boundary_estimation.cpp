@@ -5,6 +5,7 @@
 #include "hole_cases.h"
 
 #include <pcl_holefill/hole_boundary_estimation.h>
+#include <pcl_holefill/loop_tracing.h>
 #include "shapes.h"
 
 #include <pcl/search/kdtree.h>
@@ -201,4 +202,52 @@ TEST (HoleBoundaryEstimation, EmptyCloudAndBadParametersGiveNoLoop)
   est.setAngleThreshold (std::numeric_limits<float>::quiet_NaN ());
   est.compute (loops);
   EXPECT_TRUE (loops.empty ());
+}
+
+namespace
+{
+/** Rim points on an arc of \a radius about (0, 0, 0) in the plane z = 0, from
+  * angle 0 to \a angle (both ends), about 0.25 apart; normals +z, gap
+  * directions \a inward or outward (which way the walk goes round). */
+void
+arc (float radius, float angle, bool inward, std::vector<Eigen::Vector3f> &positions,
+     std::vector<Eigen::Vector3f> &normals, std::vector<Eigen::Vector3f> &gaps)
+{
+  const int steps = static_cast<int> (std::ceil (radius * angle / 0.25f));
+  for (int k = 0; k <= steps; ++k)
+  {
+    const float a = angle * static_cast<float> (k) / static_cast<float> (steps);
+    const Eigen::Vector3f p (radius * std::cos (a), radius * std::sin (a), 0.f);
+    positions.push_back (p);
+    normals.push_back (Eigen::Vector3f::UnitZ ());
+    gaps.push_back ((inward ? -1.f : 1.f) * p.normalized ());
+  }
+}
+}  // namespace
+
+// Loop tracing alone, link 1: a full circle of rim points is one closed loop.
+TEST (LoopTracing, ACircleIsOneClosedLoop)
+{
+  std::vector<Eigen::Vector3f> positions, normals, gaps;
+  arc (2.f, 2.f * static_cast<float> (M_PI) - 0.125f, true, positions, normals, gaps);
+  const auto loops = traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  ASSERT_EQ (loops.size (), 1u);
+  EXPECT_TRUE (loops[0].closed);
+  EXPECT_GE (loops[0].members.size (), positions.size () - 4);  // a few absorbed as a second row
+}
+
+// A piece of rim that ends just within 2 links of its start, having never
+// turned back, is no loop. It was one: a walk stuck within 2 links of home
+// closed, and on a noisy cube edge such a piece (6 points, 0.15 long, link
+// 0.077) was reported as the hole, the rest of the rim as an open border.
+TEST (LoopTracing, AStraightPieceEndingNearItsStartIsNoLoop)
+{
+  std::vector<Eigen::Vector3f> positions, normals, gaps;
+  arc (1.2f, 1.85f, false, positions, normals, gaps);  // 2.2 long, its ends 1.9 apart
+  const float chord = (positions.back () - positions.front ()).norm ();
+  ASSERT_GT (chord, 1.9f);
+  ASSERT_LT (chord, 2.f);
+  const auto loops = traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  ASSERT_EQ (loops.size (), 1u);
+  EXPECT_FALSE (loops[0].closed);
 }

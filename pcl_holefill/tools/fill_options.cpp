@@ -30,23 +30,34 @@ toInt (const std::string &text, int &value)
   return !in.fail () && in.eof ();
 }
 
+/** An option that sets one of the filter's numeric parameters: its name, default and range are the parameter's. */
 struct FloatOption
 {
   float Options::*field;
-  float low, high;  // inclusive range
+  const pcl_holefill::ParameterSpec *spec;
 };
+}  // namespace
+
+namespace
+{
+/** Two lines of usage for a numeric parameter: its meaning, then its unit,
+  * range and default, all from its ParameterSpec. */
+std::string
+parameterUsage (const pcl_holefill::ParameterSpec &spec, const char *metavar)
+{
+  std::ostringstream head, out;
+  head << "  " << spec.option << ' ' << metavar;
+  out << head.str () << std::string (head.str ().size () < 20 ? 20 - head.str ().size () : 1, ' ') << spec.meaning
+      << "\n                    " << spec.unit << "; " << pcl_holefill::parameters::rangeText (spec) << "; default "
+      << spec.default_value << "\n";
+  return out.str ();
+}
 }  // namespace
 
 std::string
 usage (const char *program)
 {
-  const auto &d = filterDefaults ();
-  // A default in the text, as the filter has it: "(1.1)".
-  auto def = [] (float value) {
-    std::ostringstream text;
-    text << '(' << value << ")\n";
-    return text.str ();
-  };
+  namespace P = pcl_holefill::parameters;
   std::ostringstream out;
   out << "Usage: " << program << " input.{pcd,ply,xyz,pts,txt} output.{pcd,ply,xyz,pts,txt} [options]\n"
       << "       " << program << " -demo DIR\n\n"
@@ -58,23 +69,17 @@ usage (const char *program)
       << "A cloud without normals gets them estimated (k = 16) and oriented. Lengths are in the\n"
       << "cloud's units; 0 means derived from the nearest-neighbour spacing h or the sampling\n"
       << "pitch p (sqrt(area per point)) around each hole.\n\n"
-      << "Options (default):\n"
-      << "  -radius R         neighbourhood r of eq. (1),(7); 0 = max(4h, 3.5p, 2.5 d_eq)     " << def (d.getRadius ())
-      << "  -sigma_n S|auto|sup normal dissimilarity std (no unit); small = sharp edges,\n"
-      << "                    'sup' = off, round patches; auto (0) = per hole, 2 x the\n"
-      << "                    spread of the rim's normals, within 0.1..0.3                " << def (d.getSigmaN ())
-      << "  -sigma_r S        elastic force width; spacing of new points d_eq = S^2 ln(1e4);\n"
-      << "                    0 = d_eq from -spacing                                         " << def (d.getSigmaR ())
-      << "  -spacing F        d_eq = F x p when sigma_r is 0 (0.25..10)                       " << def (d.getSpacingFactor ())
-      << "  -sigma_d S        distance weight std; 0 = r/2                                   " << def (d.getSigmaD ())
-      << "  -shrink F         r <- r/F after each pass (>= 1; the paper's 1.1)               " << def (d.getRadiusShrinkFactor ())
-      << "  -ratio T          stop a hole when kept control points / boundary points < T   " << def (d.getTerminationRatio ())
-      << "  -max_passes N     bound on passes per hole (0..100000); 0 = 4 x diameter / d_eq + 20 " << def (static_cast<float> (d.getMaxPasses ()))
+      << "Options:\n"
+      << parameterUsage (P::kRadius, "R") << parameterUsage (P::kSigmaN, "S|auto|sup")
+      << "                    (auto = 0: 2 x the spread of the rim's normals, within 0.1..0.3;\n"
+      << "                    sup: g2 off, round patches)\n"
+      << parameterUsage (P::kSigmaR, "S") << parameterUsage (P::kSpacingFactor, "F")
+      << parameterUsage (P::kSigmaD, "S") << parameterUsage (P::kRadiusShrinkFactor, "F")
+      << parameterUsage (P::kTerminationRatio, "T") << parameterUsage (P::kMaxPasses, "N")
+      << parameterUsage (P::kMinHoleSize, "P") << "                    (under 5, the gaps of random samples count)\n"
+      << parameterUsage (P::kMaxHoleDiameter, "D")
       << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
       << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
-      << "  -min_hole_size P  smallest hole, as an empty disc P sampling pitches across\n"
-      << "                    (pitch = sqrt(area per point); under 5, random gaps count) " << def (d.getMinHoleSize ())
-      << "  -max_hole_size D  leave holes wider than D alone; 0 = fill all                  " << def (d.getMaxHoleDiameter ())
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
       << "                    the detected holes\n"
       << "  -report FILE      per-hole report as JSON\n"
@@ -117,7 +122,7 @@ parseSigmaN (const std::string &text, Options &options, std::string &error)
     options.sigma_n = pcl_holefill::kSup;
   else if (text == "auto")
     options.sigma_n = 0.f;
-  else if (!toFloat (text, options.sigma_n) || !(options.sigma_n >= 0.f))
+  else if (!toFloat (text, options.sigma_n) || !pcl_holefill::parameters::kSigmaN.accepts (options.sigma_n))
   {
     error = "-sigma_n takes a number >= 0, 'auto' (= 0) or 'sup', not '" + text + "'";
     return false;
@@ -129,12 +134,15 @@ parseSigmaN (const std::string &text, Options &options, std::string &error)
 bool
 parseCount (const std::string &arg, const std::string &text, Options &options, std::string &error)
 {
+  constexpr int kMaxThreads = 1024;
   int n = 0;
   const bool passes = arg == "-max_passes";
-  if (!toInt (text, n) || (passes ? (n < 0 || n > 100000) : (n < 0 || n > 1024)))
+  const auto &spec = pcl_holefill::parameters::kMaxPasses;
+  if (!toInt (text, n) || n < 0 || (passes ? !spec.accepts (static_cast<float> (n)) : n > kMaxThreads))
   {
-    error = arg + (passes ? " takes a whole number from 0 to 100000" : " takes a whole number from 0 to 1024") +
-            ", not '" + text + "'";
+    error = arg + " takes a whole number " +
+            (passes ? pcl_holefill::parameters::rangeText (spec) : "0.." + std::to_string (kMaxThreads)) + ", not '" +
+            text + "'";
     return false;
   }
   (passes ? options.max_passes : options.threads) = n;
@@ -146,12 +154,9 @@ parseFloat (const std::string &arg, const FloatOption &f, const std::string &tex
             std::string &error)
 {
   float v = 0.f;
-  if (!toFloat (text, v) || v < f.low || v > f.high)
+  if (!toFloat (text, v) || !f.spec->accepts (v))
   {
-    std::ostringstream why;
-    why << arg << " takes a number from " << f.low << (f.high < 1e29f ? " to " + std::to_string (f.high) : " up")
-        << ", not '" << text << "'";
-    error = why.str ();
+    error = arg + " takes a number " + pcl_holefill::parameters::rangeText (*f.spec) + ", not '" + text + "'";
     return false;
   }
   options.*(f.field) = v;
@@ -161,13 +166,19 @@ parseFloat (const std::string &arg, const FloatOption &f, const std::string &tex
 const std::map<std::string, FloatOption> &
 floatOptions ()
 {
-  static const std::map<std::string, FloatOption> floats{
-      {"-radius", {&Options::radius, 0.f, 1e30f}},       {"-sigma_r", {&Options::sigma_r, 0.f, 1e30f}},
-      {"-sigma_d", {&Options::sigma_d, 0.f, 1e30f}},     {"-shrink", {&Options::shrink, 1.f, 100.f}},
-      {"-ratio", {&Options::ratio, 0.f, 0.999f}},        {"-spacing", {&Options::spacing, 0.25f, 10.f}},
-      {"-max_hole_size", {&Options::max_hole_size, 0.f, 1e30f}},
-      {"-min_hole_size", {&Options::min_hole_size, 2.f, 100.f}},
-  };
+  namespace P = pcl_holefill::parameters;
+  static const std::map<std::string, FloatOption> floats = [] {
+    const FloatOption options[] = {
+        {&Options::radius, &P::kRadius},         {&Options::sigma_r, &P::kSigmaR},
+        {&Options::sigma_d, &P::kSigmaD},        {&Options::shrink, &P::kRadiusShrinkFactor},
+        {&Options::ratio, &P::kTerminationRatio}, {&Options::spacing, &P::kSpacingFactor},
+        {&Options::max_hole_size, &P::kMaxHoleDiameter}, {&Options::min_hole_size, &P::kMinHoleSize},
+    };
+    std::map<std::string, FloatOption> by_name;
+    for (const auto &o : options)
+      by_name[o.spec->option] = o;
+    return by_name;
+  }();
   return floats;
 }
 

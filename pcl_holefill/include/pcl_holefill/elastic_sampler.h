@@ -220,8 +220,12 @@ private:
   int
   curvatureSign (int index) const;
 
+  /** The combination constraint of section 4.4: does a sample at \a position
+    * lie past the tangent plane of a convex (below it) or concave (above it)
+    * reference point within the constraint's reach, by more than the
+    * tolerance? Such a sample overshoots an edge the rim shows. */
   bool
-  overshoots (const Eigen::Vector3f &position) const;
+  breaksCombinationConstraint (const Eigen::Vector3f &position) const;
 
   /** The constraint's reach: its radius, at most r. */
   float

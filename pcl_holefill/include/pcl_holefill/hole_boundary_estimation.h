@@ -6,6 +6,7 @@
 
 #include <pcl_holefill/boundary_loop.h>
 #include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/hole_filling_parameters.h>
 #include <pcl_holefill/loop_tracing.h>
 #include <pcl_holefill/point_grid.h>
 
@@ -89,7 +90,7 @@ public:
   int
   getMinLoopPoints () const { return min_loop_points_; }
 
-  /** \brief Loops wider than this (cloud units) are borders, never holes; 0 (default) = no limit. */
+  /** \brief Loops wider than this are borders, never holes: parameters::kMaxHoleDiameter. */
   void
   setMaxHoleDiameter (float diameter) { max_hole_diameter_ = diameter; }
   float
@@ -97,7 +98,7 @@ public:
 
   /** \brief Smallest hole reported, as the diameter of the empty disc it
     * must hold, in local sampling pitches (sqrt of the surface area per
-    * point, measured from the k nearest neighbours). Default 6, range 2..100.
+    * point, measured from the k nearest neighbours): parameters::kMinHoleSize.
     * Below 5 the gaps of uniformly random sampling are reported as holes. */
   void
   setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
@@ -222,10 +223,10 @@ private:
   int k_ = 16;
   float angle_threshold_ = static_cast<float> (M_PI / 2.0);
   float link_factor_ = 4.5f;
-  float min_hole_pitches_ = 6.f;
+  float min_hole_pitches_ = parameters::kMinHoleSize.default_value;
   float min_hole_diameter_ = 0.f;
   int min_loop_points_ = 6;
-  float max_hole_diameter_ = 0.f;
+  float max_hole_diameter_ = parameters::kMaxHoleDiameter.default_value;
   unsigned int threads_ = 0;
 
   // Working state of one call.

@@ -6,6 +6,7 @@
 
 #include <pcl_holefill/boundary_loop.h>
 #include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/hole_filling_parameters.h>
 #include <pcl_holefill/hole_report.h>
 #include <pcl_holefill/local_surface.h>
 #include <pcl_holefill/voxel_hash_search.h>
@@ -86,35 +87,51 @@ public:
 
   HoleFilling () { filter_name_ = "HoleFilling"; }
 
+  // Each parameter's default, range and unit: hole_filling_parameters.h.
+
+  /** \brief r, the neighbourhood of eq. (1) and (7): parameters::kRadius. */
   void setRadius (float r) { radius_ = r; }
   float getRadius () const { return radius_; }
 
-  void setRadiusShrinkFactor (float f) { shrink_ = f; }
+  /** \brief r <- r / factor after each pass (Fig. 1(c)): parameters::kRadiusShrinkFactor. */
+  void setRadiusShrinkFactor (float factor) { shrink_ = factor; }
   float getRadiusShrinkFactor () const { return shrink_; }
 
-  void setSigmaD (float s) { sigma_d_ = s; }
+  /** \brief sigma_d, the std of the distance weight g1: parameters::kSigmaD. */
+  void setSigmaD (float sigma_d) { sigma_d_ = sigma_d; }
   float getSigmaD () const { return sigma_d_; }
 
-  void setSigmaN (float s) { sigma_n_ = s; }
+  /** \brief sigma_n, the std of the normal weight g2: small keeps edges
+    * sharp, kSup gives round patches; 0 chooses per hole from the rim's
+    * normals: parameters::kSigmaN. */
+  void setSigmaN (float sigma_n) { sigma_n_ = sigma_n; }
   float getSigmaN () const { return sigma_n_; }
 
-  void setSigmaR (float s) { sigma_r_ = s; }
+  /** \brief sigma_r, the width of the elastic force (eq. 6), which sets the
+    * spacing of new points d_eq: parameters::kSigmaR. */
+  void setSigmaR (float sigma_r) { sigma_r_ = sigma_r; }
   float getSigmaR () const { return sigma_r_; }
 
-  void setSpacingFactor (float f) { spacing_factor_ = f; }
+  /** \brief d_eq in sampling pitches when sigma_r is 0: parameters::kSpacingFactor. */
+  void setSpacingFactor (float factor) { spacing_factor_ = factor; }
   float getSpacingFactor () const { return spacing_factor_; }
 
-  void setTerminationRatio (float t) { termination_ratio_ = t; }
+  /** \brief The termination rule of sec. 4.2 (the paper's 30 %): parameters::kTerminationRatio. */
+  void setTerminationRatio (float ratio) { termination_ratio_ = ratio; }
   float getTerminationRatio () const { return termination_ratio_; }
 
-  void setMaxPasses (int n) { max_passes_ = n; }
+  /** \brief Bound on the passes of one hole: parameters::kMaxPasses. */
+  void setMaxPasses (int passes) { max_passes_ = passes; }
   int getMaxPasses () const { return max_passes_; }
 
   /** \brief A hole whose boundary grows past this many times its first
-    * length is diverging and stopped (>= 1, default 1.5). */
-  void setMaxBoundaryGrowth (float g) { max_growth_ = g; }
+    * length is diverging and stopped: parameters::kMaxBoundaryGrowth. */
+  void setMaxBoundaryGrowth (float growth) { max_growth_ = growth; }
   float getMaxBoundaryGrowth () const { return max_growth_; }
 
+  /** \brief The first-order extension of eq. (1)-(2) (a linear normal field
+    * around each candidate) instead of the paper's constant one; left out
+    * per hole on noisy rims (default on). */
   void setFirstOrder (bool on) { first_order_ = on; }
   bool getFirstOrder () const { return first_order_; }
 
@@ -122,18 +139,20 @@ public:
   void setCombinationConstraint (bool on) { combination_constraint_ = on; }
   bool getCombinationConstraint () const { return combination_constraint_; }
 
+  /** \brief The bilateral preprocessing of section 3.2 first; it moves
+    * input points (default off). */
   void setDenoise (bool on) { denoise_ = on; }
   bool getDenoise () const { return denoise_; }
 
   /** \brief Smallest hole filled: the diameter of the empty disc it must
-    * hold, in local sampling pitches (sqrt of the surface area per point).
-    * \param[in] pitches default 6, range 2..100; below 5 the gaps of
-    * uniformly random sampling are taken for holes
-    * (HoleBoundaryEstimation::setMinHoleSize). */
+    * hold, in local sampling pitches (sqrt of the surface area per point);
+    * below 5 the gaps of uniformly random sampling are taken for holes
+    * (HoleBoundaryEstimation::setMinHoleSize): parameters::kMinHoleSize. */
   void setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
   float getMinHoleSize () const { return min_hole_pitches_; }
 
-  void setMaxHoleDiameter (float d) { max_hole_diameter_ = d; }
+  /** \brief Holes wider than this are left alone: parameters::kMaxHoleDiameter. */
+  void setMaxHoleDiameter (float diameter) { max_hole_diameter_ = diameter; }
   float getMaxHoleDiameter () const { return max_hole_diameter_; }
 
   /** \brief Loops to fill (indices into the input cloud) instead of the
@@ -283,20 +302,20 @@ private:
   fillHoles (const PointCloud &working, pcl::search::Search<PointT> &search, const std::vector<BoundaryLoop> &holes,
              std::vector<PointCloud> &fills);
 
-  float radius_ = 0.f;
-  float shrink_ = 1.f;
-  float sigma_d_ = 0.f;
-  float sigma_n_ = 0.f;
-  float sigma_r_ = 0.f;
-  float spacing_factor_ = 1.1f;
-  float termination_ratio_ = 0.3f;
-  int max_passes_ = 0;
-  float max_growth_ = 1.5f;
+  float radius_ = parameters::kRadius.default_value;
+  float shrink_ = parameters::kRadiusShrinkFactor.default_value;
+  float sigma_d_ = parameters::kSigmaD.default_value;
+  float sigma_n_ = parameters::kSigmaN.default_value;
+  float sigma_r_ = parameters::kSigmaR.default_value;
+  float spacing_factor_ = parameters::kSpacingFactor.default_value;
+  float termination_ratio_ = parameters::kTerminationRatio.default_value;
+  int max_passes_ = static_cast<int> (parameters::kMaxPasses.default_value);
+  float max_growth_ = parameters::kMaxBoundaryGrowth.default_value;
   bool first_order_ = true;
   bool combination_constraint_ = true;
   bool denoise_ = false;
-  float max_hole_diameter_ = 0.f;
-  float min_hole_pitches_ = 6.f;
+  float max_hole_diameter_ = parameters::kMaxHoleDiameter.default_value;
+  float min_hole_pitches_ = parameters::kMinHoleSize.default_value;
   std::vector<BoundaryLoop> user_holes_;
   SearchPtr search_;
   unsigned int threads_ = 0;

@@ -112,7 +112,7 @@ ElasticSampler<PointT>::curvatureSign (int index) const
 }
 
 template <typename PointT> bool
-ElasticSampler<PointT>::overshoots (const Eigen::Vector3f &position) const
+ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &position) const
 {
   PointT query;
   query.getVector3fMap () = position;
@@ -148,7 +148,7 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
                                                   sqr_distances, 1);
   if (!found.empty ())
     return Verdict::kTooClose;
-  if (combination_constraint_ && overshoots (position))
+  if (combination_constraint_ && breaksCombinationConstraint (position))
     return Verdict::kOvershoot;
   return Verdict::kKept;
 }

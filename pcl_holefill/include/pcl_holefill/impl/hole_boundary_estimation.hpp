@@ -58,8 +58,8 @@ HoleBoundaryEstimation<PointT>::checkParameters (const char *caller) const
 {
   if (k_ < 3 || k_ > 64 || !(angle_threshold_ >= M_PI / 2.0 && angle_threshold_ < 2.f * M_PI) ||
       !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
-      !(max_hole_diameter_ >= 0.f && std::isfinite (max_hole_diameter_)) ||
-      !(min_hole_pitches_ >= 2.f && min_hole_pitches_ <= 100.f) ||
+      !parameters::kMaxHoleDiameter.accepts (max_hole_diameter_) ||
+      !parameters::kMinHoleSize.accepts (min_hole_pitches_) ||
       !(min_hole_diameter_ >= 0.f && std::isfinite (min_hole_diameter_)))
   {
     PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] Invalid parameters: k = %d (3..64), angle "

@@ -278,36 +278,27 @@ measureRimStatistics (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<
 template <typename PointT> bool
 HoleFilling<PointT>::checkParameters () const
 {
-  auto non_negative = [] (float v) { return v >= 0.f && std::isfinite (v); };
-  const char *bad = nullptr;
-  if (!non_negative (radius_))
-    bad = "radius (>= 0, 0 = automatic)";
-  else if (!(shrink_ >= 1.f && std::isfinite (shrink_)))
-    bad = "radius shrink factor (>= 1)";
-  else if (!non_negative (sigma_d_))
-    bad = "sigma_d (>= 0, 0 = automatic)";
-  else if (!(sigma_n_ >= 0.f))  // kSup (infinity) is allowed, NaN is not
-    bad = "sigma_n (>= 0, 0 = automatic, or kSup)";
-  else if (!non_negative (sigma_r_))
-    bad = "sigma_r (>= 0, 0 = automatic)";
-  else if (!(spacing_factor_ >= 0.25f && spacing_factor_ <= 10.f))
-    bad = "spacing factor (0.25..10)";
-  else if (!(termination_ratio_ >= 0.f && termination_ratio_ < 1.f))
-    bad = "termination ratio (0..1)";
-  else if (max_passes_ < 0 || max_passes_ > 100000)
-    bad = "max passes (0..100000, 0 = automatic)";
-  else if (!(max_growth_ >= 1.f && std::isfinite (max_growth_)))
-    bad = "max boundary growth (>= 1)";
-  else if (!non_negative (max_hole_diameter_))
-    bad = "max hole diameter (>= 0, 0 = no limit)";
-  else if (!(min_hole_pitches_ >= 2.f && min_hole_pitches_ <= 100.f))
-    bad = "min hole size (2..100 pitches)";
-  if (bad)
-  {
-    PCL_ERROR ("[pcl_holefill::%s::checkParameters] Invalid parameter: %s. Nothing filtered.\n",
-               getClassName ().c_str (), bad);
-    return false;
-  }
+  namespace P = parameters;
+  const std::pair<const ParameterSpec &, float> checked[] = {
+      {P::kRadius, radius_},
+      {P::kRadiusShrinkFactor, shrink_},
+      {P::kSigmaD, sigma_d_},
+      {P::kSigmaN, sigma_n_},
+      {P::kSigmaR, sigma_r_},
+      {P::kSpacingFactor, spacing_factor_},
+      {P::kTerminationRatio, termination_ratio_},
+      {P::kMaxPasses, static_cast<float> (max_passes_)},
+      {P::kMaxBoundaryGrowth, max_growth_},
+      {P::kMaxHoleDiameter, max_hole_diameter_},
+      {P::kMinHoleSize, min_hole_pitches_},
+  };
+  for (const auto &[spec, value] : checked)
+    if (!spec.accepts (value))
+    {
+      PCL_ERROR ("[pcl_holefill::%s::checkParameters] Invalid parameter: %s = %g (%s; %s). Nothing filtered.\n",
+                 getClassName ().c_str (), spec.name, value, P::rangeText (spec).c_str (), spec.unit);
+      return false;
+    }
   return true;
 }
 

@@ -1,0 +1,110 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace pcl_holefill
+{
+/** \brief One numeric parameter of HoleFilling: its default, range and unit,
+  * written here once. The filter's defaults and checkParameters (), the
+  * command's options, their checks and its usage text all read them (the
+  * meaning of each is documented at its setter and in doc/parameters.md). */
+struct ParameterSpec
+{
+  const char *name;          //!< the paper's name, as messages print it
+  const char *meaning;       //!< what it does, in one line
+  const char *option;        //!< the command's option ("" if it has none)
+  float default_value;
+  float low;                 //!< smallest value accepted
+  float high;                //!< largest value accepted (or, if high_open, the bound below it)
+  bool high_open;            //!< high itself refused
+  bool infinity_allowed;     //!< +infinity accepted (sigma_n: kSup)
+  const char *unit;          //!< unit, and what 0 means where it means "automatic"
+
+  /** \brief Is \a value in range? NaN never is. */
+  bool
+  accepts (float value) const
+  {
+    if (std::isinf (value))
+      return infinity_allowed && value > 0.f;
+    return value >= low && (high_open ? value < high : value <= high);
+  }
+};
+
+/** \brief The parameters of HoleFilling (and of detection, which it drives). */
+namespace parameters
+{
+constexpr float kUnbounded = std::numeric_limits<float>::max ();
+
+// Each: name, meaning, option; default, low, high, high excluded, infinity
+// allowed; unit (and what 0 means).
+
+constexpr ParameterSpec kRadius{
+    "radius r", "neighbourhood of eq. (1) and (7)", "-radius",
+    0.f, 0.f, kUnbounded, false, false,
+    "cloud units; 0 = max(4 h, 3.5 p, 2.5 d_eq) per hole"};
+constexpr ParameterSpec kRadiusShrinkFactor{
+    "radius shrink factor", "r shrinks by this factor after each pass", "-shrink",
+    1.f, 1.f, kUnbounded, false, false,
+    "no unit; r <- r / factor after each pass (the paper's 1.1)"};
+constexpr ParameterSpec kSigmaD{
+    "sigma_d", "std of the distance weight g1", "-sigma_d",
+    0.f, 0.f, kUnbounded, false, false,
+    "cloud units; 0 = r / 2"};
+constexpr ParameterSpec kSigmaN{
+    "sigma_n", "std of the normal weight g2: small keeps edges sharp", "-sigma_n",
+    0.f, 0.f, kUnbounded, false, true,
+    "no unit (over |n_p - n_ref|, 0..2); 0 = per hole; kSup (infinity) = g2 off"};
+constexpr ParameterSpec kSigmaR{
+    "sigma_r", "width of the elastic force (eq. 6)", "-sigma_r",
+    0.f, 0.f, kUnbounded, false, false,
+    "cloud units; d_eq = sigma_r^2 ln(1e4); 0 = d_eq from the spacing factor"};
+constexpr ParameterSpec kSpacingFactor{
+    "spacing factor", "spacing of new points d_eq when sigma_r is 0", "-spacing",
+    1.1f, 0.25f, 10.f, false, false,
+    "sampling pitches; d_eq = factor x p when sigma_r is 0"};
+constexpr ParameterSpec kTerminationRatio{
+    "termination ratio", "the termination rule of sec. 4.2", "-ratio",
+    0.3f, 0.f, 1.f, true, false,
+    "no unit; stop when kept control points / boundary points < ratio"};
+constexpr ParameterSpec kMaxPasses{
+    "max passes", "bound on the passes of one hole", "-max_passes",
+    0.f, 0.f, 100000.f, false, false,
+    "passes per hole; 0 = 4 x rim diameter / d_eq + 20"};
+constexpr ParameterSpec kMaxBoundaryGrowth{
+    "max boundary growth", "bound on a diverging boundary", "",
+    1.5f, 1.f, kUnbounded, false, false,
+    "no unit; a boundary longer than this times the first is diverging"};
+constexpr ParameterSpec kMaxHoleDiameter{
+    "max hole diameter", "holes wider than this are left alone", "-max_hole_size",
+    0.f, 0.f, kUnbounded, false, false,
+    "cloud units; 0 = fill every hole"};
+constexpr ParameterSpec kMinHoleSize{
+    "min hole size", "smallest hole, told from the gaps of the sampling", "-min_hole_size",
+    6.f, 2.f, 100.f, false, false,
+    "sampling pitches: the empty disc a hole must hold"};
+
+/** \brief The range of \a spec as text: ">= 0", "0.25..10", "0..1, 1 excluded". */
+inline std::string
+rangeText (const ParameterSpec &spec)
+{
+  std::ostringstream text;
+  if (spec.high == kUnbounded)
+    text << ">= " << spec.low;
+  else
+    text << spec.low << ".." << spec.high << (spec.high_open ? ", " : "");
+  if (spec.high_open)
+    text << spec.high << " excluded";
+  if (spec.infinity_allowed)
+    text << ", or infinity";
+  return text.str ();
+}
+}  // namespace parameters
+
+}  // namespace pcl_holefill

@@ -251,3 +251,62 @@ TEST (LoopTracing, AStraightPieceEndingNearItsStartIsNoLoop)
   ASSERT_EQ (loops.size (), 1u);
   EXPECT_FALSE (loops[0].closed);
 }
+
+// The angular-gap test on a plane: neighbours on rings around the point, 10
+// degrees apart, none strictly within 60 degrees of +x. The gap is measured
+// between the nearest neighbours on either side, its bisector points into it.
+TEST (AngularGap, MeasuresAnEmptySectorAndPointsIntoIt)
+{
+  std::vector<Eigen::Vector3f> neighbours, normals;
+  constexpr int kPerRing = 36;  // 10 degrees apart
+  for (int ring = 1; ring <= 2; ++ring)
+    for (int k = 0; k < kPerRing; ++k)
+    {
+      const float a = 2.f * static_cast<float> (M_PI) * static_cast<float> (k) / kPerRing;
+      if (std::abs (std::remainder (a, 2.f * static_cast<float> (M_PI))) < static_cast<float> (M_PI) / 3.f)
+        continue;  // within 60 degrees of +x: the gap
+      neighbours.emplace_back (ring * std::cos (a), ring * std::sin (a), 0.f);
+      normals.push_back (Eigen::Vector3f::UnitZ ());
+    }
+  const AngularGap gap = largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), neighbours, normals);
+  EXPECT_NEAR (gap.angle, 2.f * static_cast<float> (M_PI) / 3.f, 1e-4f);  // the nearest kept lie at +-60 degrees
+  EXPECT_GT (gap.direction.dot (Eigen::Vector3f::UnitX ()), 0.99f);
+  // Inside the surface (nothing left out): no gap of a right angle.
+  std::vector<Eigen::Vector3f> all, all_normals;
+  for (int k = 0; k < kPerRing; ++k)
+  {
+    const float a = 2.f * static_cast<float> (M_PI) * static_cast<float> (k) / kPerRing;
+    all.emplace_back (std::cos (a), std::sin (a), 0.f);
+    all_normals.push_back (Eigen::Vector3f::UnitZ ());
+  }
+  EXPECT_LE (largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), all, all_normals).angle,
+             static_cast<float> (M_PI) / 2.f + 1e-5f);
+}
+
+// Sec. 3.3's midpoint refinement: four feature points on a circle of cloud
+// points; the refined loop takes the cloud point nearest to each midpoint,
+// recursively, so it follows the circle in order.
+TEST (MidpointRefinement, FillsTheLoopInOrderAlongTheCloud)
+{
+  constexpr int kPoints = 64;
+  std::vector<Eigen::Vector3f> circle;
+  for (int k = 0; k < kPoints; ++k)
+  {
+    const float a = 2.f * static_cast<float> (M_PI) * static_cast<float> (k) / kPoints;
+    circle.emplace_back (std::cos (a), std::sin (a), 0.f);
+  }
+  const auto position_of = [&circle] (int i) { return circle[i]; };
+  const auto nearest_index = [&circle] (const Eigen::Vector3f &p) {
+    int best = -1;
+    for (int i = 0; i < kPoints; ++i)
+      if (best < 0 || (circle[i] - p).squaredNorm () < (circle[best] - p).squaredNorm ())
+        best = i;
+    return best;
+  };
+  const auto refined = refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 1000);
+  ASSERT_EQ (refined.size (), static_cast<std::size_t> (kPoints));  // every point of the circle, once
+  for (std::size_t k = 0; k < refined.size (); ++k)
+    EXPECT_EQ (refined[k], static_cast<int> (k));
+  // The bound holds.
+  EXPECT_LE (refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 10).size (), 10u);
+}

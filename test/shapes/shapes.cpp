@@ -314,8 +314,7 @@ meanSpacing (const Cloud &cloud)
   for (const auto &p : cloud)
     positions.push_back (p.getVector3fMap ());
   PointGrid grid (PointGrid::suggestCellSize (positions, 4));
-  for (std::size_t i = 0; i < positions.size (); ++i)
-    grid.insert (positions[i], static_cast<int> (i));
+  grid.build (positions);
   double sum = 0.0;
   std::size_t count = 0;
   std::vector<PointGrid::Neighbour> found;

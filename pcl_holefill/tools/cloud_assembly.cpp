@@ -4,6 +4,7 @@
  */
 #include "cloud_assembly.h"
 
+#include "cloud_reader.h"
 #include "normal_estimation.h"
 
 #include <pcl/search/kdtree.h>
@@ -48,30 +49,13 @@ realFields (const pcl::PCLPointCloud2 &cloud, const char *const names[3], const 
 const char *const kPositionNames[3] = {"x", "y", "z"};
 const char *const kNormalNames[3] = {"normal_x", "normal_y", "normal_z"};
 
-double
-readReal (const std::uint8_t *row, const pcl::PCLPointField &field)
+/** The three \a fields of the point at \a row, as doubles. */
+Eigen::Vector3d
+readVector (const std::uint8_t *row, const pcl::PCLPointField *const fields[3])
 {
-  if (field.datatype == pcl::PCLPointField::FLOAT64)
-  {
-    double v;
-    std::memcpy (&v, row + field.offset, sizeof (v));
-    return v;
-  }
-  float v;
-  std::memcpy (&v, row + field.offset, sizeof (v));
-  return v;
-}
-
-void
-writeReal (std::uint8_t *row, const pcl::PCLPointField &field, double value)
-{
-  if (field.datatype == pcl::PCLPointField::FLOAT64)
-    std::memcpy (row + field.offset, &value, sizeof (value));
-  else
-  {
-    const float v = static_cast<float> (value);
-    std::memcpy (row + field.offset, &v, sizeof (v));
-  }
+  return {fieldValue (row + fields[0]->offset, fields[0]->datatype),
+          fieldValue (row + fields[1]->offset, fields[1]->datatype),
+          fieldValue (row + fields[2]->offset, fields[2]->datatype)};
 }
 
 /** One field named \a name of PCL type \a datatype, a value per point. */
@@ -95,14 +79,11 @@ column (const std::string &name, std::uint8_t datatype, const std::vector<T> &va
   std::memcpy (column.data.data (), values.data (), column.data.size ());
   return column;
 }
-}  // namespace
 
-namespace
-{
 /** Is the layout one PCL's conversions can trust: every field inside a
-  * point, every point inside the data, float x, y, z? */
+  * point, every point inside the data, float or double x, y, z (then in \a xyz)? */
 bool
-checkLayout (const pcl::PCLPointCloud2 &file_cloud, std::string &error)
+checkLayout (const pcl::PCLPointCloud2 &file_cloud, const pcl::PCLPointField *xyz[3], std::string &error)
 {
   if (static_cast<std::size_t> (file_cloud.width) * file_cloud.height == 0)
   {
@@ -121,7 +102,6 @@ checkLayout (const pcl::PCLPointCloud2 &file_cloud, std::string &error)
     error = "the cloud has less data than points";
     return false;
   }
-  const pcl::PCLPointField *xyz[3];
   if (!realFields (file_cloud, kPositionNames, xyz))
   {
     error = "the cloud has no float or double x, y, z fields";
@@ -146,10 +126,8 @@ localOrigin (const Eigen::AlignedBox3d &box)
 /** The positions into prepared.points, in the local frame (prepared.origin);
   * counts the finite ones. */
 void
-readPositions (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
+readPositions (const pcl::PCLPointCloud2 &file_cloud, const pcl::PCLPointField *const xyz[3], PreparedCloud &prepared)
 {
-  const pcl::PCLPointField *xyz[3];
-  realFields (file_cloud, kPositionNames, xyz);
   const std::size_t points = static_cast<std::size_t> (file_cloud.width) * file_cloud.height;
   std::vector<Eigen::Vector3d> positions (points);
   Eigen::AlignedBox3d box;
@@ -157,7 +135,7 @@ readPositions (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
   for (std::size_t i = 0; i < points; ++i)
   {
     const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
-    positions[i] = Eigen::Vector3d (readReal (row, *xyz[0]), readReal (row, *xyz[1]), readReal (row, *xyz[2]));
+    positions[i] = readVector (row, xyz);
     if (positions[i].allFinite ())
     {
       box.extend (positions[i]);
@@ -174,16 +152,12 @@ readPositions (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
   * conversion to a point type with a curvature field prints a warning for
   * every cloud without one); returns how many are usable (finite, not 0). */
 std::size_t
-readNormals (const pcl::PCLPointCloud2 &file_cloud, PreparedCloud &prepared)
+readNormals (const pcl::PCLPointCloud2 &file_cloud, const pcl::PCLPointField *const n[3], PreparedCloud &prepared)
 {
   std::size_t usable_normals = 0;
-  const pcl::PCLPointField *n[3];
-  realFields (file_cloud, kNormalNames, n);
   for (std::size_t i = 0; i < prepared.points->size (); ++i)
   {
-    const std::uint8_t *row = file_cloud.data.data () + i * file_cloud.point_step;
-    const Eigen::Vector3f v =
-        Eigen::Vector3d (readReal (row, *n[0]), readReal (row, *n[1]), readReal (row, *n[2])).cast<float> ();
+    const Eigen::Vector3f v = readVector (file_cloud.data.data () + i * file_cloud.point_step, n).cast<float> ();
     (*prepared.points)[i].getNormalVector3fMap () = v;
     const float length = v.norm ();
     usable_normals += std::isfinite (length) && length > kMinNormalLength ? 1 : 0;
@@ -218,7 +192,8 @@ bool
 prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
               std::string &error)
 {
-  if (!checkLayout (file_cloud, error))
+  const pcl::PCLPointField *xyz[3], *normal_fields[3];
+  if (!checkLayout (file_cloud, xyz, error))
     return false;
   prepared.fields = file_cloud;
   // The output gains points: it cannot stay organized.
@@ -226,15 +201,14 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
   prepared.fields.height = 1;
   prepared.fields.row_step = prepared.fields.point_step * prepared.fields.width;
   prepared.points.reset (new pcl::PointCloud<pcl::PointNormal>);
-  readPositions (file_cloud, prepared);
+  readPositions (file_cloud, xyz, prepared);
   if (prepared.finite_points == 0)
   {
     error = "the cloud has no finite point";
     return false;
   }
-  const pcl::PCLPointField *normal_fields[3];
   const bool has_normals = realFields (file_cloud, kNormalNames, normal_fields);
-  const std::size_t usable_normals = has_normals ? readNormals (file_cloud, prepared) : 0;
+  const std::size_t usable_normals = has_normals ? readNormals (file_cloud, normal_fields, prepared) : 0;
   // Normals that are mostly 0 0 0 or not finite (how some tools write "no
   // normal") are estimated for the fill; the input rows keep theirs.
   prepared.normals_unusable = has_normals && usable_normals < kMinUsableNormalShare * prepared.finite_points;
@@ -285,8 +259,8 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
       std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[0]) * step, step);
     for (int d = 0; d < 3; ++d)
     {
-      writeReal (row, *xyz[d], static_cast<double> (p.data[d]) + prepared.origin[d]);
-      writeReal (row, *nxyz[d], p.data_n[d]);
+      storeFieldValue (static_cast<double> (p.data[d]) + prepared.origin[d], xyz[d]->datatype, row + xyz[d]->offset);
+      storeFieldValue (p.data_n[d], nxyz[d]->datatype, row + nxyz[d]->offset);
     }
   }
   rows.width = static_cast<std::uint32_t> (input_points + added);

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -110,9 +111,6 @@ plainName (const std::string &name)
   return std::all_of (name.begin (), name.end (), [] (unsigned char c) { return std::isalnum (c) || c == '_'; });
 }
 
-bool
-storeValue (double v, std::uint8_t datatype, std::uint8_t *out);
-
 /** A number of an ascii body as the bytes of a field of type \a datatype. */
 bool
 storeNumber (const std::string &word, std::uint8_t datatype, std::uint8_t *out)
@@ -121,30 +119,7 @@ storeNumber (const std::string &word, std::uint8_t datatype, std::uint8_t *out)
   const double v = std::strtod (word.c_str (), &end);
   if (end == word.c_str () || *end != '\0')
     return false;
-  return storeValue (v, datatype, out);
-}
-
-/** \a v as the bytes of a field of type \a datatype (integers clamped to their range, NaN as 0). */
-bool
-storeValue (double v, std::uint8_t datatype, std::uint8_t *out)
-{
-  auto put = [out] (auto value) { std::memcpy (out, &value, sizeof (value)); };
-  auto integral = [&v] (double lo, double hi) { return std::isnan (v) ? 0.0 : std::min (hi, std::max (lo, v)); };
-  switch (datatype)
-  {
-  case pcl::PCLPointField::INT8: put (static_cast<std::int8_t> (integral (-128, 127))); break;
-  case pcl::PCLPointField::UINT8: put (static_cast<std::uint8_t> (integral (0, 255))); break;
-  case pcl::PCLPointField::INT16: put (static_cast<std::int16_t> (integral (-32768, 32767))); break;
-  case pcl::PCLPointField::UINT16: put (static_cast<std::uint16_t> (integral (0, 65535))); break;
-  case pcl::PCLPointField::INT32: put (static_cast<std::int32_t> (integral (-2147483648.0, 2147483647.0))); break;
-  case pcl::PCLPointField::UINT32: put (static_cast<std::uint32_t> (integral (0, 4294967295.0))); break;
-  case pcl::PCLPointField::INT64: put (static_cast<std::int64_t> (integral (-9.2e18, 9.2e18))); break;
-  case pcl::PCLPointField::UINT64: put (static_cast<std::uint64_t> (integral (0, 1.8e19))); break;
-  case pcl::PCLPointField::FLOAT32: put (static_cast<float> (v)); break;
-  case pcl::PCLPointField::FLOAT64: put (v); break;
-  default: return false;
-  }
-  return true;
+  return storeFieldValue (v, datatype, out);
 }
 
 std::uint8_t
@@ -693,7 +668,7 @@ readPlyVertex (PlyBody &body, const std::vector<PlyProperty> &properties, const 
       if (layout.packed_rgb && static_cast<int> (i) == layout.colour[c])
         rgb[c] = static_cast<std::uint8_t> (std::min (255.0, std::max (0.0, value)));
     if (layout.offset[i] >= 0)
-      storeValue (value, properties[i].datatype, point + layout.offset[i]);
+      storeFieldValue (value, properties[i].datatype, point + layout.offset[i]);
   }
   if (layout.packed_rgb)
   {
@@ -769,6 +744,51 @@ readWith (bool (*parse) (const std::string &, pcl::PCLPointCloud2 &, std::string
   return false;
 }
 }  // namespace
+
+bool
+storeFieldValue (double v, std::uint8_t datatype, std::uint8_t *out)
+{
+  auto put = [out] (auto value) { std::memcpy (out, &value, sizeof (value)); };
+  auto integral = [&v] (double lo, double hi) { return std::isnan (v) ? 0.0 : std::min (hi, std::max (lo, v)); };
+  switch (datatype)
+  {
+  case pcl::PCLPointField::INT8: put (static_cast<std::int8_t> (integral (-128, 127))); break;
+  case pcl::PCLPointField::UINT8: put (static_cast<std::uint8_t> (integral (0, 255))); break;
+  case pcl::PCLPointField::INT16: put (static_cast<std::int16_t> (integral (-32768, 32767))); break;
+  case pcl::PCLPointField::UINT16: put (static_cast<std::uint16_t> (integral (0, 65535))); break;
+  case pcl::PCLPointField::INT32: put (static_cast<std::int32_t> (integral (-2147483648.0, 2147483647.0))); break;
+  case pcl::PCLPointField::UINT32: put (static_cast<std::uint32_t> (integral (0, 4294967295.0))); break;
+  case pcl::PCLPointField::INT64: put (static_cast<std::int64_t> (integral (-9.2e18, 9.2e18))); break;
+  case pcl::PCLPointField::UINT64: put (static_cast<std::uint64_t> (integral (0, 1.8e19))); break;
+  case pcl::PCLPointField::FLOAT32: put (static_cast<float> (v)); break;
+  case pcl::PCLPointField::FLOAT64: put (v); break;
+  default: return false;
+  }
+  return true;
+}
+
+double
+fieldValue (const std::uint8_t *at, std::uint8_t datatype)
+{
+  auto get = [at] (auto v) {
+    std::memcpy (&v, at, sizeof (v));
+    return static_cast<double> (v);
+  };
+  switch (datatype)
+  {
+  case pcl::PCLPointField::INT8: return get (std::int8_t ());
+  case pcl::PCLPointField::UINT8: return get (std::uint8_t ());
+  case pcl::PCLPointField::INT16: return get (std::int16_t ());
+  case pcl::PCLPointField::UINT16: return get (std::uint16_t ());
+  case pcl::PCLPointField::INT32: return get (std::int32_t ());
+  case pcl::PCLPointField::UINT32: return get (std::uint32_t ());
+  case pcl::PCLPointField::INT64: return get (std::int64_t ());
+  case pcl::PCLPointField::UINT64: return get (std::uint64_t ());
+  case pcl::PCLPointField::FLOAT32: return get (float ());
+  case pcl::PCLPointField::FLOAT64: return get (double ());
+  default: return std::numeric_limits<double>::quiet_NaN ();
+  }
+}
 
 bool
 readPcd (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error)

@@ -6,6 +6,7 @@
 
 #include <pcl/PCLPointCloud2.h>
 
+#include <cstdint>
 #include <string>
 
 namespace pcl_holefill_tool
@@ -18,11 +19,20 @@ bool
 readPcd (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error);
 
 /** \brief Reads the vertex element of a PLY file (ascii or binary, either
-  * byte order), which must come first. Properties keep their names (nx, ny,
-  * nz become normal_x, normal_y, normal_z; uchar red, green, blue become a
-  * packed rgb as in PCL) and are stored as 32-bit floats. Same guarantees as
-  * readPcd(). */
+  * byte order; other elements before or after it are read past).
+  * Properties keep their names (nx, ny, nz become normal_x, normal_y,
+  * normal_z; uchar red, green, blue become a packed rgb as in PCL) and their
+  * types. Same guarantees as readPcd(). */
 bool
 readPly (const std::string &path, pcl::PCLPointCloud2 &cloud, std::string &error);
+
+/** \brief \a value as the bytes of a field of PCL type \a datatype at \a out
+  * (integers clamped to their range, NaN as 0); false for an unknown type. */
+bool
+storeFieldValue (double value, std::uint8_t datatype, std::uint8_t *out);
+
+/** \brief The value of a field of PCL type \a datatype stored at \a at (NaN for an unknown type). */
+double
+fieldValue (const std::uint8_t *at, std::uint8_t datatype);
 
 }  // namespace pcl_holefill_tool

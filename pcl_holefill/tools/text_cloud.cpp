@@ -4,6 +4,8 @@
  */
 #include "text_cloud.h"
 
+#include "cloud_reader.h"
+
 #include <pcl/common/io.h>
 
 #include <algorithm>
@@ -125,26 +127,6 @@ readTable (std::istream &in, std::vector<double> &table, std::size_t &columns, s
   }
   return true;
 }
-/** The value of a field of PCL type \a datatype stored at \a at. */
-double
-numberAt (const std::uint8_t *at, std::uint8_t datatype)
-{
-  auto get = [at] (auto v) {
-    std::memcpy (&v, at, sizeof (v));
-    return static_cast<double> (v);
-  };
-  switch (datatype)
-  {
-  case pcl::PCLPointField::FLOAT32: return get (float ());
-  case pcl::PCLPointField::FLOAT64: return get (double ());
-  case pcl::PCLPointField::INT32: return get (std::int32_t ());
-  case pcl::PCLPointField::UINT32: return get (std::uint32_t ());
-  case pcl::PCLPointField::INT16: return get (std::int16_t ());
-  case pcl::PCLPointField::UINT16: return get (std::uint16_t ());
-  case pcl::PCLPointField::INT8: return get (std::int8_t ());
-  default: return get (std::uint8_t ());
-  }
-}
 }  // namespace
 
 bool
@@ -253,7 +235,7 @@ writeText (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::strin
     for (std::size_t k = 0; k < order.size (); ++k)
     {
       const auto &field = cloud.fields[order[k]];
-      printNumber (out.get (), numberAt (row + field.offset, field.datatype), field.datatype, k == 0);
+      printNumber (out.get (), fieldValue (row + field.offset, field.datatype), field.datatype, k == 0);
     }
     std::fputc ('\n', out.get ());
   }

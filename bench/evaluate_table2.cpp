@@ -16,7 +16,7 @@
 #include "../pcl_holefill/tools/render.h"
 
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 #include "shapes.h"
 
 #include <pcl/search/kdtree.h>
@@ -30,7 +30,7 @@
 
 namespace shapes = pcl_holefill::shapes;
 using Cloud = shapes::Cloud;
-using pcl_holefill::PointGrid;
+using pcl_holefill::detail::PointGrid;
 using pcl_holefill_tool::Splat;
 
 namespace

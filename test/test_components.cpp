@@ -3,9 +3,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_holefill/bilateral_preprocessor.h>
-#include <pcl_holefill/elastic_sampler.h>
-#include <pcl_holefill/local_surface.h>
-#include <pcl_holefill/normal_propagation.h>
+#include <pcl_holefill/detail/elastic_sampler.h>
+#include <pcl_holefill/detail/local_surface.h>
+#include <pcl_holefill/detail/normal_propagation.h>
 #include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
 
@@ -31,7 +31,7 @@ TEST (NormalPropagation, SmallSigmaNKeepsToTheReferenceSideOfAnEdge)
 {
   // At the dihedral's ridge both faces are within r: sigma_n picks the reference's face.
   Cloud::Ptr cloud (new Cloud (shapes::dihedral ().sample (4000)));
-  NormalPropagation<pcl::PointNormal> propagation;
+  detail::NormalPropagation<pcl::PointNormal> propagation;
   propagation.setInputCloud (cloud);
   propagation.setSearchMethod (searchOver (cloud));
   propagation.setRadius (0.08f);
@@ -56,7 +56,7 @@ TEST (NormalPropagation, FirstOrderContinuesTheCurvatureOfASphere)
   for (const auto &p : full)
     if (p.z < 0.5f)
       south->push_back (p);
-  NormalPropagation<pcl::PointNormal> propagation;
+  detail::NormalPropagation<pcl::PointNormal> propagation;
   propagation.setInputCloud (south);
   propagation.setSearchMethod (searchOver (south));
   propagation.setRadius (0.1f);
@@ -76,10 +76,10 @@ namespace
 {
 /** Points of a sphere (radius \a radius, centre below the origin so that
   * the origin lies on it with normal +z) at the tangent offsets \a offsets. */
-Neighbourhood
+detail::Neighbourhood
 onSphere (float radius, const std::vector<Eigen::Vector2f> &offsets)
 {
-  Neighbourhood neighbours;
+  detail::Neighbourhood neighbours;
   const Eigen::Vector3f centre (0.f, 0.f, -radius);
   for (const auto &u : offsets)
   {
@@ -101,8 +101,8 @@ TEST (LocalSurface, FirstOrderMeasuresTheFullCurvatureOfASphere)
     for (int j = -6; j <= 0; ++j)
       offsets.emplace_back (0.01f * i, 0.01f * j);
   const float radius = 0.5f;
-  const auto estimate = propagateNormal (onSphere (radius, offsets), Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (),
-                                         BilateralKernel{0.04f, kSup}, true);
+  const auto estimate = detail::propagateNormal (onSphere (radius, offsets), Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (),
+                                         detail::BilateralKernel{0.04f, kSup}, true);
   ASSERT_TRUE (estimate.valid);
   EXPECT_GT (estimate.normal.z (), 1.f - 1e-6f);
   // Shape operator of a sphere with outward normals: identity / radius.
@@ -122,12 +122,12 @@ TEST (LocalSurface, NoSlopeAcrossARowOfNeighbours)
   std::vector<Eigen::Vector2f> offsets;
   for (int i = -8; i <= 8; ++i)
     offsets.emplace_back (0.01f * i, 0.f);
-  Neighbourhood neighbours = onSphere (0.5f, offsets);
+  detail::Neighbourhood neighbours = onSphere (0.5f, offsets);
   // A tilt across the row that a free fit would read as a strong bend.
   for (std::size_t k = 0; k < neighbours.size (); ++k)
     neighbours.positions[k].y () += (k % 2 ? 1e-4f : -1e-4f);
-  const auto estimate = propagateNormal (neighbours, Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (),
-                                         BilateralKernel{0.04f, kSup}, true);
+  const auto estimate = detail::propagateNormal (neighbours, Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (),
+                                         detail::BilateralKernel{0.04f, kSup}, true);
   ASSERT_TRUE (estimate.valid);
   const Eigen::Vector2f along (estimate.axis_u.x (), estimate.axis_v.x ());  // the x axis in (u, v)
   const Eigen::Vector2f across (estimate.axis_u.y (), estimate.axis_v.y ());
@@ -141,7 +141,7 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   Cloud::Ptr cloud (new Cloud (cut.kept));
   const float h = static_cast<float> (shapes::meanSpacing (cut.kept));
   // A front on the rim circle, as detection would give it.
-  Front former (1);
+  detail::Front former (1);
   former[0].closed = true;
   for (int k = 0; k < 80; ++k)
   {
@@ -149,7 +149,7 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
     former[0].vertices.push_back ({Eigen::Vector3f (0.5f + 0.2f * std::cos (a), 0.5f + 0.2f * std::sin (a), 0.5f),
                                    Eigen::Vector3f::UnitZ ()});
   }
-  ElasticSampler<pcl::PointNormal> sampler;
+  detail::ElasticSampler<pcl::PointNormal> sampler;
   sampler.setInputCloud (cloud);
   sampler.setSearchMethod (searchOver (cloud));
   sampler.setRadius (5.f * h);
@@ -158,8 +158,8 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   sampler.setEquilibriumDistance (1.5f * h);
   sampler.setConstraintTolerance (0.1f * h);
   sampler.setCurvatureSignTolerance (0.1f * h);
-  Front next;
-  ContractionStats stats;
+  detail::Front next;
+  detail::ContractionStats stats;
   ASSERT_TRUE (sampler.contract (former, next, stats));
   EXPECT_EQ (stats.former_boundary_points, 80u);
   EXPECT_GT (stats.kept_control_points, 70u);
@@ -176,7 +176,7 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   const float expected = 2.f * static_cast<float> (M_PI) * ring / (1.5f * h);
   EXPECT_NEAR (static_cast<float> (next[0].vertices.size ()), expected, 0.1f * expected + 1.f);
   // The paper's eq. (6): sigma_r^2 ln(1e4).
-  EXPECT_NEAR (ElasticSampler<pcl::PointNormal>::equilibriumDistanceFromSigmaR (0.1f), 0.01f * std::log (1e4f), 1e-6f);
+  EXPECT_NEAR (detail::ElasticSampler<pcl::PointNormal>::equilibriumDistanceFromSigmaR (0.1f), 0.01f * std::log (1e4f), 1e-6f);
 }
 
 TEST (BilateralPreprocessor, DenoisesAPlaneAndKeepsTheRidge)

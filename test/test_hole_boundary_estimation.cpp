@@ -5,7 +5,7 @@
 #include "hole_cases.h"
 
 #include <pcl_holefill/hole_boundary_estimation.h>
-#include <pcl_holefill/loop_tracing.h>
+#include <pcl_holefill/detail/loop_tracing.h>
 #include "shapes.h"
 
 #include <pcl/search/kdtree.h>
@@ -230,7 +230,7 @@ TEST (LoopTracing, ACircleIsOneClosedLoop)
 {
   std::vector<Eigen::Vector3f> positions, normals, gaps;
   arc (2.f, 2.f * static_cast<float> (M_PI) - 0.125f, true, positions, normals, gaps);
-  const auto loops = traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  const auto loops = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
   ASSERT_EQ (loops.size (), 1u);
   EXPECT_TRUE (loops[0].closed);
   EXPECT_GE (loops[0].members.size (), positions.size () - 4);  // a few absorbed as a second row
@@ -247,7 +247,7 @@ TEST (LoopTracing, AStraightPieceEndingNearItsStartIsNoLoop)
   const float chord = (positions.back () - positions.front ()).norm ();
   ASSERT_GT (chord, 1.9f);
   ASSERT_LT (chord, 2.f);
-  const auto loops = traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  const auto loops = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
   ASSERT_EQ (loops.size (), 1u);
   EXPECT_FALSE (loops[0].closed);
 }
@@ -268,7 +268,7 @@ TEST (AngularGap, MeasuresAnEmptySectorAndPointsIntoIt)
       neighbours.emplace_back (ring * std::cos (a), ring * std::sin (a), 0.f);
       normals.push_back (Eigen::Vector3f::UnitZ ());
     }
-  const AngularGap gap = largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), neighbours, normals);
+  const detail::AngularGap gap = detail::largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), neighbours, normals);
   EXPECT_NEAR (gap.angle, 2.f * static_cast<float> (M_PI) / 3.f, 1e-4f);  // the nearest kept lie at +-60 degrees
   EXPECT_GT (gap.direction.dot (Eigen::Vector3f::UnitX ()), 0.99f);
   // Inside the surface (nothing left out): no gap of a right angle.
@@ -279,7 +279,7 @@ TEST (AngularGap, MeasuresAnEmptySectorAndPointsIntoIt)
     all.emplace_back (std::cos (a), std::sin (a), 0.f);
     all_normals.push_back (Eigen::Vector3f::UnitZ ());
   }
-  EXPECT_LE (largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), all, all_normals).angle,
+  EXPECT_LE (detail::largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), all, all_normals).angle,
              static_cast<float> (M_PI) / 2.f + 1e-5f);
 }
 
@@ -303,10 +303,10 @@ TEST (MidpointRefinement, FillsTheLoopInOrderAlongTheCloud)
         best = i;
     return best;
   };
-  const auto refined = refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 1000);
+  const auto refined = detail::refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 1000);
   ASSERT_EQ (refined.size (), static_cast<std::size_t> (kPoints));  // every point of the circle, once
   for (std::size_t k = 0; k < refined.size (); ++k)
     EXPECT_EQ (refined[k], static_cast<int> (k));
   // The bound holds.
-  EXPECT_LE (refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 10).size (), 10u);
+  EXPECT_LE (detail::refineByMidpoints ({0, 16, 32, 48}, true, position_of, nearest_index, 10).size (), 10u);
 }

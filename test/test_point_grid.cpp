@@ -2,7 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <random>
 
-using pcl_holefill::PointGrid;
+using pcl_holefill::detail::PointGrid;
 
 namespace
 {

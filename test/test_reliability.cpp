@@ -6,10 +6,10 @@
  * moved or lost input point.
  */
 #include <pcl_holefill/bilateral_preprocessor.h>
-#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
-#include <pcl_holefill/normal_propagation.h>
+#include <pcl_holefill/detail/normal_propagation.h>
 #include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
 
@@ -207,7 +207,7 @@ TEST (BadParameters, EveryClassRefusesNegativeZeroAndNan)
 
     VoxelHashSearch<pcl::PointNormal>::Ptr search (new VoxelHashSearch<pcl::PointNormal>);
     search->setInputCloud (cloud);
-    NormalPropagation<pcl::PointNormal> propagation;
+    detail::NormalPropagation<pcl::PointNormal> propagation;
     propagation.setInputCloud (cloud);
     propagation.setSearchMethod (search);
     propagation.setRadius (bad);
@@ -215,14 +215,14 @@ TEST (BadParameters, EveryClassRefusesNegativeZeroAndNan)
     Cloud candidates (*cloud);
     EXPECT_FALSE (propagation.propagate (candidates, std::vector<Eigen::Vector3f> (candidates.size ())));
 
-    ElasticSampler<pcl::PointNormal> sampler;
+    detail::ElasticSampler<pcl::PointNormal> sampler;
     sampler.setInputCloud (cloud);
     sampler.setSearchMethod (search);
     sampler.setRadius (0.05f);
     sampler.setSigmaD (0.02f);
     sampler.setEquilibriumDistance (bad);
-    Front front (1), next;
-    ContractionStats stats;
+    detail::Front front (1), next;
+    detail::ContractionStats stats;
     EXPECT_FALSE (sampler.contract (front, next, stats));
 
     for (int which = 0; which < 4; ++which)

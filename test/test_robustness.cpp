@@ -10,7 +10,7 @@
  */
 #include "corpus.h"
 
-#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/normal_orientation.h>

@@ -2,7 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 
 #include <Eigen/Geometry>
 
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 namespace
 {
@@ -170,4 +170,4 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   return gap;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

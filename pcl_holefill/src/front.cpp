@@ -2,9 +2,9 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/front.h>
+#include <pcl_holefill/detail/front.h>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 float
 frontLength (const Front &front)
@@ -21,4 +21,4 @@ frontLength (const Front &front)
   return length;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

@@ -2,7 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/local_surface.h>
+#include <pcl_holefill/detail/local_surface.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 namespace
 {
@@ -148,4 +148,4 @@ positionOffset (const Neighbourhood &neighbours, const Eigen::Vector3f &position
   return total > kMinWeight ? weighted / total : 0.f;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

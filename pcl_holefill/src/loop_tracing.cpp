@@ -2,9 +2,9 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/boundary_point_test.h>
-#include <pcl_holefill/loop_tracing.h>
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
+#include <pcl_holefill/detail/loop_tracing.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <Eigen/Geometry>
 
@@ -13,7 +13,7 @@
 #include <limits>
 #include <set>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 namespace
 {
@@ -289,4 +289,4 @@ loopLength (const std::vector<Eigen::Vector3f> &loop_positions, bool closed)
   return length;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

@@ -2,13 +2,13 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 namespace
 {
@@ -553,4 +553,4 @@ PointGrid::suggestCellSize (const std::vector<Eigen::Vector3f> &points, int k)
   return std::isfinite (cell) && cell > 0.f ? cell : diagonal;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

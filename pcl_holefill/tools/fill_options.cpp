@@ -52,6 +52,18 @@ parameterUsage (const pcl_holefill::ParameterSpec &spec, const char *metavar)
       << spec.default_value << "\n";
   return out.str ();
 }
+
+/** Two lines of usage for an option that switches a parameter, from its SwitchSpec. */
+std::string
+switchUsage (const pcl_holefill::SwitchSpec &spec)
+{
+  std::ostringstream head, out;
+  head << "  " << spec.option;
+  out << head.str () << std::string (head.str ().size () < 20 ? 20 - head.str ().size () : 1, ' ') << spec.name
+      << (spec.option_sets ? " on" : " off") << " (default " << (spec.default_value ? "on" : "off")
+      << ")\n                    " << spec.meaning << "\n";
+  return out.str ();
+}
 }  // namespace
 
 std::string
@@ -78,8 +90,7 @@ usage (const char *program)
       << parameterUsage (P::kTerminationRatio, "T") << parameterUsage (P::kMaxPasses, "N")
       << parameterUsage (P::kMinHoleSize, "P") << "                    (under 5, the gaps of random samples count)\n"
       << parameterUsage (P::kMaxHoleDiameter, "D")
-      << "  -zero_order       the paper's eq. (1) as printed (cones on smooth holes)        (off)\n"
-      << "  -denoise          bilateral preprocessing first (moves input points)           (off)\n"
+      << switchUsage (P::kFirstOrder) << switchUsage (P::kDenoise)
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
       << "                    the detected holes\n"
       << "  -report FILE      per-hole report as JSON\n"
@@ -105,8 +116,8 @@ setSwitch (const std::string &arg, Options &options)
 {
   static const std::map<std::string, bool Options::*> switches{
       {"-h", &Options::help},           {"--help", &Options::help},
-      {"-q", &Options::quiet},          {"-denoise", &Options::denoise},
-      {"-zero_order", &Options::zero_order}, {"-detect_only", &Options::detect_only},
+      {"-q", &Options::quiet},          {pcl_holefill::parameters::kDenoise.option, &Options::denoise},
+      {pcl_holefill::parameters::kFirstOrder.option, &Options::zero_order}, {"-detect_only", &Options::detect_only},
   };
   const auto found = switches.find (arg);
   if (found == switches.end ())

@@ -4,7 +4,7 @@
  */
 #include "render.h"
 
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <Eigen/Geometry>
 
@@ -68,11 +68,11 @@ renderSplats (const std::vector<Splat> &splats, const Eigen::Vector3f &view_dire
   const float scale = 0.9f * size / extent;  // pixels per unit, 5 % margin
   const Eigen::Vector2f offset = 0.5f * (lo + hi);
   // Splat radius: the mean spacing, a little more so that surfaces close.
-  pcl_holefill::PointGrid grid (pcl_holefill::PointGrid::suggestCellSize (positions, 4));
+  pcl_holefill::detail::PointGrid grid (pcl_holefill::detail::PointGrid::suggestCellSize (positions, 4));
   grid.build (positions);
   double spacing = 0.0;
   std::size_t counted = 0;
-  std::vector<pcl_holefill::PointGrid::Neighbour> near;
+  std::vector<pcl_holefill::detail::PointGrid::Neighbour> near;
   for (std::size_t i = 0; i < positions.size (); i += 1 + positions.size () / 2000)
   {
     grid.nearestK (positions[i], 2, near);

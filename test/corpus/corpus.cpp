@@ -6,7 +6,7 @@
 
 #include "off_mesh.h"
 
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <pcl/features/normal_3d.h>
 #include <pcl/filters/voxel_grid.h>
@@ -102,9 +102,9 @@ finish (Cloud &cloud)
 /** Appends \a p to \a out (and to \a kept, its grid) unless a kept point
   * lies closer than \a radius: the test of dart throwing. */
 void
-keepIfApart (const pcl::PointNormal &p, float radius, pcl_holefill::PointGrid &kept, Cloud &out)
+keepIfApart (const pcl::PointNormal &p, float radius, pcl_holefill::detail::PointGrid &kept, Cloud &out)
 {
-  thread_local std::vector<pcl_holefill::PointGrid::Neighbour> near;
+  thread_local std::vector<pcl_holefill::detail::PointGrid::Neighbour> near;
   kept.withinRadius (p.getVector3fMap (), radius, near, 1);
   if (!near.empty ())
     return;
@@ -118,7 +118,7 @@ template <typename MinDistance> Cloud
 poissonDisk (SurfaceDarts &darts, std::size_t points, std::size_t max_darts, float largest, MinDistance min_distance)
 {
   Cloud out;
-  pcl_holefill::PointGrid kept (largest);
+  pcl_holefill::detail::PointGrid kept (largest);
   for (std::size_t d = 0; d < max_darts && out.size () < points; ++d)
   {
     const pcl::PointNormal p = darts.next ();
@@ -153,7 +153,7 @@ scanLines (const Shape &shape, SurfaceDarts &darts, std::size_t points)
       slab.push_back (q);
   }
   Cloud out;
-  pcl_holefill::PointGrid kept (static_cast<float> (along));
+  pcl_holefill::detail::PointGrid kept (static_cast<float> (along));
   for (const auto &q : slab)
     keepIfApart (q, static_cast<float> (0.9 * along), kept, out);
   return out;
@@ -510,13 +510,13 @@ namespace corpus
 namespace
 {
 /** A grid over the points of \a cloud, whose positions go to \a positions. */
-pcl_holefill::PointGrid
+pcl_holefill::detail::PointGrid
 gridOf (const Cloud &cloud, std::vector<Eigen::Vector3f> &positions)
 {
   positions.clear ();
   for (const auto &q : cloud)
     positions.push_back (q.getVector3fMap ());
-  pcl_holefill::PointGrid grid (pcl_holefill::PointGrid::suggestCellSize (positions, 8));
+  pcl_holefill::detail::PointGrid grid (pcl_holefill::detail::PointGrid::suggestCellSize (positions, 8));
   grid.build (positions);
   return grid;
 }
@@ -527,9 +527,9 @@ std::vector<bool>
 coveredBalls (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
 {
   std::vector<Eigen::Vector3f> positions;
-  const pcl_holefill::PointGrid grid = gridOf (output, positions);
+  const pcl_holefill::detail::PointGrid grid = gridOf (output, positions);
   std::vector<std::size_t> total (balls.size (), 0), covered (balls.size (), 0);
-  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  std::vector<pcl_holefill::detail::PointGrid::Neighbour> nearest;
   for (const auto &q : cut.removed)
   {
     const Eigen::Vector3d x = q.getVector3fMap ().cast<double> ();
@@ -553,8 +553,8 @@ double
 fillSpacingRatio (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
 {
   std::vector<Eigen::Vector3f> positions;
-  const pcl_holefill::PointGrid grid = gridOf (output, positions);
-  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  const pcl_holefill::detail::PointGrid grid = gridOf (output, positions);
+  std::vector<pcl_holefill::detail::PointGrid::Neighbour> nearest;
   double rim_sum = 0.0, fill_sum = 0.0;
   std::size_t rim_count = 0, fill_count = 0;
   for (std::size_t i = 0; i < positions.size (); ++i)
@@ -662,10 +662,10 @@ scoreMethod (const Case &c, const CutCloud &cut, const Cloud &output)
 {
   const double p = pitch (c.shape, c.points);
   std::vector<Eigen::Vector3f> input_positions, output_positions;
-  const pcl_holefill::PointGrid input_grid = gridOf (cut.kept, input_positions);
-  const pcl_holefill::PointGrid output_grid = gridOf (output, output_positions);
+  const pcl_holefill::detail::PointGrid input_grid = gridOf (cut.kept, input_positions);
+  const pcl_holefill::detail::PointGrid output_grid = gridOf (output, output_positions);
   MethodScore s;
-  std::vector<pcl_holefill::PointGrid::Neighbour> nearest;
+  std::vector<pcl_holefill::detail::PointGrid::Neighbour> nearest;
   for (const auto &x : output_positions)
   {
     const Eigen::Vector3d xd = x.cast<double> ();

@@ -2,7 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 #include "shapes.h"
 
 #include <Eigen/Geometry>
@@ -181,8 +181,8 @@ Shape::sample (std::size_t points, unsigned seed) const
       cumulative.push_back (total += faceArea (f));
     std::uniform_real_distribution<double> unit (0.0, 1.0);
     const float min_distance = static_cast<float> (0.8 * spacing);
-    PointGrid kept (min_distance);
-    std::vector<PointGrid::Neighbour> near;
+    detail::PointGrid kept (min_distance);
+    std::vector<detail::PointGrid::Neighbour> near;
     for (std::size_t dart = 0; dart < 8 * points; ++dart)
     {
       const std::size_t f = std::min<std::size_t> (
@@ -313,11 +313,11 @@ meanSpacing (const Cloud &cloud)
   std::vector<Eigen::Vector3f> positions;
   for (const auto &p : cloud)
     positions.push_back (p.getVector3fMap ());
-  PointGrid grid (PointGrid::suggestCellSize (positions, 4));
+  detail::PointGrid grid (detail::PointGrid::suggestCellSize (positions, 4));
   grid.build (positions);
   double sum = 0.0;
   std::size_t count = 0;
-  std::vector<PointGrid::Neighbour> found;
+  std::vector<detail::PointGrid::Neighbour> found;
   for (const auto &p : positions)
   {
     grid.nearestK (p, 2, found);
@@ -361,10 +361,10 @@ evaluateFill (const Shape &shape, const CutCloud &cut, const std::vector<Ball> &
     q.coverage = cut.removed.empty () ? 1.0 : 0.0;
     return q;
   }
-  PointGrid grid (PointGrid::suggestCellSize (positions, 8));
+  detail::PointGrid grid (detail::PointGrid::suggestCellSize (positions, 8));
   for (std::size_t i = 0; i < positions.size (); ++i)
     grid.insert (positions[i], static_cast<int> (i));
-  std::vector<PointGrid::Neighbour> nearest;
+  std::vector<detail::PointGrid::Neighbour> nearest;
   std::size_t covered = 0;
   for (const auto &p : cut.removed)
   {

@@ -5,10 +5,10 @@
 #pragma once
 
 #include <pcl_holefill/boundary_loop.h>
-#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/hole_filling_parameters.h>
-#include <pcl_holefill/loop_tracing.h>
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/loop_tracing.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <pcl/pcl_base.h>
 #include <pcl/search/search.h>
@@ -150,7 +150,7 @@ private:
   struct RimPoint
   {
     int local;        //!< usable point
-    AngularGap gap;   //!< its widest empty sector
+    detail::AngularGap gap;   //!< its widest empty sector
     float spacing;    //!< distance to its nearest distinct neighbour
   };
 
@@ -190,7 +190,7 @@ private:
   /** Stage 3 for one traced loop (members index \a rim): the midpoint
     * refinement of section 3.3, its measures, and hole or border. */
   BoundaryLoop
-  finishLoop (const TracedLoop &traced, const std::vector<RimPoint> &rim, const std::vector<float> &pitch_of) const;
+  finishLoop (const detail::TracedLoop &traced, const std::vector<RimPoint> &rim, const std::vector<float> &pitch_of) const;
 
   /** k nearest usable points to usable point \a local (itself excluded), as local ids. */
   void
@@ -209,7 +209,7 @@ private:
     * sector \a gap (tried at several angles within the sector: the sector's
     * bisector on a ragged rim need not point at the hole's centre). */
   bool
-  emptyDiscTouches (int local, const AngularGap &gap, float diameter, float pitch) const;
+  emptyDiscTouches (int local, const detail::AngularGap &gap, float diameter, float pitch) const;
 
   /** Usable points within \a radius of usable point \a local, as local ids. */
   void
@@ -235,7 +235,7 @@ private:
   std::vector<Eigen::Vector3f> positions_;
   std::vector<Eigen::Vector3f> normals_;  //!< unit
   std::vector<std::pair<int, float>> rim_spacing_;  //!< (usable point, nearest distance) of rim points, sorted
-  PointGrid grid_;                        //!< over positions_, when no search is set
+  detail::PointGrid grid_;                        //!< over positions_, when no search is set
   std::vector<char> flags_;
   float mean_spacing_ = 0.f;
   float mean_pitch_ = 0.f;

@@ -5,10 +5,10 @@
 #pragma once
 
 #include <pcl_holefill/boundary_loop.h>
-#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/hole_filling_parameters.h>
 #include <pcl_holefill/hole_report.h>
-#include <pcl_holefill/local_surface.h>
+#include <pcl_holefill/detail/local_surface.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/filters/filter.h>
@@ -131,16 +131,16 @@ public:
 
   /** \brief The first-order extension of eq. (1)-(2) (a linear normal field
     * around each candidate) instead of the paper's constant one; left out
-    * per hole on noisy rims (default on). */
+    * per hole on noisy rims: parameters::kFirstOrder. */
   void setFirstOrder (bool on) { first_order_ = on; }
   bool getFirstOrder () const { return first_order_; }
 
-  /** \brief The combination constraint of section 4.4 (default on). */
+  /** \brief The combination constraint of section 4.4: parameters::kCombinationConstraint. */
   void setCombinationConstraint (bool on) { combination_constraint_ = on; }
   bool getCombinationConstraint () const { return combination_constraint_; }
 
   /** \brief The bilateral preprocessing of section 3.2 first; it moves
-    * input points (default off). */
+    * input points: parameters::kDenoise. */
   void setDenoise (bool on) { denoise_ = on; }
   bool getDenoise () const { return denoise_; }
 
@@ -236,41 +236,41 @@ private:
 
   /** The sampler's parameters for this hole, from the scale and the rim's noise. */
   void
-  setUpSampler (ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,
+  setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,
                 HoleReport &report) const;
 
   /** The Do ... Until loop of Algorithm 1: contraction passes from \a front
     * until the termination rule; returns the boundary where the fill stopped. */
-  Front
-  contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings, Front front,
+  detail::Front
+  contractUntilTermination (detail::ElasticSampler<PointT> &sampler, Surroundings &surroundings, detail::Front front,
                             const HoleScale &scale, HoleReport &report,
                             int pass_budget = std::numeric_limits<int>::max ()) const;
 
   /** The termination rule after pass \a pass of this run, \a passes_done in all (kNotStarted: go on). */
   Termination
-  terminationOf (const ContractionStats &stats, const Front &next, int pass, float first_length,
+  terminationOf (const detail::ContractionStats &stats, const detail::Front &next, int pass, float first_length,
                  unsigned passes_done, int max_passes) const;
 
   /** closed, open_points and open_diameter of \a report: where an empty disc
     * still touches \a last or a filled point. Returns the openings' boundaries. */
-  Front
-  checkClosure (const Surroundings &surroundings, const Front &last, const HoleScale &scale,
+  detail::Front
+  checkClosure (const Surroundings &surroundings, const detail::Front &last, const HoleScale &scale,
                 HoleReport &report) const;
 
   /** Whether an empty disc of \a diameter touches \a v in the surroundings;
     * \a gap_direction receives the direction of the empty side. */
   bool
-  emptyDiscAt (const Surroundings &surroundings, const FrontVertex &v, float diameter,
+  emptyDiscAt (const Surroundings &surroundings, const detail::FrontVertex &v, float diameter,
                Eigen::Vector3f &gap_direction) const;
 
   /** Contracts again from one opening's boundary, confined to the opening. */
-  Front
-  resumeOpening (ElasticSampler<PointT> &sampler, Surroundings &surroundings, FrontChain opening,
+  detail::Front
+  resumeOpening (detail::ElasticSampler<PointT> &sampler, Surroundings &surroundings, detail::FrontChain opening,
                  const HoleScale &scale, HoleReport &report) const;
 
   /** The openings worth contracting again: those inside the rim. */
-  static Front
-  resumable (const Front &openings, const HoleScale &scale);
+  static detail::Front
+  resumable (const detail::Front &openings, const HoleScale &scale);
 
   /** Stopped by the paper's rule (ratio, no new boundary), not cut short. */
   static bool
@@ -311,9 +311,9 @@ private:
   float termination_ratio_ = parameters::kTerminationRatio.default_value;
   int max_passes_ = static_cast<int> (parameters::kMaxPasses.default_value);
   float max_growth_ = parameters::kMaxBoundaryGrowth.default_value;
-  bool first_order_ = true;
-  bool combination_constraint_ = true;
-  bool denoise_ = false;
+  bool first_order_ = parameters::kFirstOrder.default_value;
+  bool combination_constraint_ = parameters::kCombinationConstraint.default_value;
+  bool denoise_ = parameters::kDenoise.default_value;
   float max_hole_diameter_ = parameters::kMaxHoleDiameter.default_value;
   float min_hole_pitches_ = parameters::kMinHoleSize.default_value;
   std::vector<BoundaryLoop> user_holes_;

@@ -4,7 +4,7 @@
  */
 #pragma once
 
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/point_grid.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/search/search.h>
@@ -58,7 +58,7 @@ public:
 
 private:
   int
-  toIndices (const std::vector<PointGrid::Neighbour> &found, pcl::Indices &k_indices,
+  toIndices (const std::vector<detail::PointGrid::Neighbour> &found, pcl::Indices &k_indices,
              std::vector<float> &k_sqr_distances) const;
 
   using pcl::search::Search<PointT>::input_;
@@ -68,7 +68,7 @@ private:
   int neighbours_per_cell_block_;
   float requested_cell_size_ = 0.f;
   std::size_t indexed_points_ = 0;
-  PointGrid grid_;
+  detail::PointGrid grid_;
 };
 
 }  // namespace pcl_holefill

@@ -5,9 +5,9 @@
 #pragma once
 
 #include <pcl_holefill/bilateral_preprocessor.h>
-#include <pcl_holefill/local_surface.h>
-#include <pcl_holefill/point_validity.h>
-#include <pcl_holefill/thread_count.h>
+#include <pcl_holefill/detail/local_surface.h>
+#include <pcl_holefill/detail/point_validity.h>
+#include <pcl_holefill/detail/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/common/io.h>
@@ -30,7 +30,7 @@ automaticSigmaD (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<Point
   pcl::Indices found;
   std::vector<float> d2;
   for (std::size_t i = 0; i < cloud.size (); i += 1 + cloud.size () / kSampledPoints)
-    if (isOrientedPoint (cloud[i]) && search.nearestKSearch (cloud[i], 2, found, d2) == 2)
+    if (detail::isOrientedPoint (cloud[i]) && search.nearestKSearch (cloud[i], 2, found, d2) == 2)
     {
       sum += std::sqrt (d2[1]);
       ++count;
@@ -43,13 +43,13 @@ automaticSigmaD (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<Point
   * point reads \a current and writes its own entry: parallel and deterministic. */
 template <typename PointT> void
 filterNormals (const pcl::PointCloud<PointT> &current, pcl::search::Search<PointT> &search,
-               const BilateralKernel &kernel, double radius, int threads, pcl::PointCloud<PointT> &next)
+               const detail::BilateralKernel &kernel, double radius, int threads, pcl::PointCloud<PointT> &next)
 {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (current.size ()); ++i)
   {
     const PointT &p = current[i];
-    if (!isOrientedPoint (p))
+    if (!detail::isOrientedPoint (p))
       continue;
     const Eigen::Vector3f n = p.getNormalVector3fMap ().normalized ();
     pcl::Indices found;
@@ -59,7 +59,7 @@ filterNormals (const pcl::PointCloud<PointT> &current, pcl::search::Search<Point
     for (std::size_t k = 0; k < found.size (); ++k)
     {
       const PointT &q = current[found[k]];
-      if (!isOrientedPoint (q))
+      if (!detail::isOrientedPoint (q))
         continue;
       const Eigen::Vector3f nq = q.getNormalVector3fMap ().normalized ();
       sum += kernel.spatial (d2[k]) * kernel.normal ((nq - n).squaredNorm ()) * nq;
@@ -74,13 +74,13 @@ filterNormals (const pcl::PointCloud<PointT> &current, pcl::search::Search<Point
   * filtered normals). */
 template <typename PointT> void
 filterPositions (const pcl::PointCloud<PointT> &current, pcl::search::Search<PointT> &search,
-                 const BilateralKernel &kernel, double radius, int threads, pcl::PointCloud<PointT> &next)
+                 const detail::BilateralKernel &kernel, double radius, int threads, pcl::PointCloud<PointT> &next)
 {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (current.size ()); ++i)
   {
     const PointT &p = next[i];
-    if (!isOrientedPoint (p))
+    if (!detail::isOrientedPoint (p))
       continue;
     const Eigen::Vector3f n = p.getNormalVector3fMap ();
     pcl::Indices found;
@@ -90,7 +90,7 @@ filterPositions (const pcl::PointCloud<PointT> &current, pcl::search::Search<Poi
     for (std::size_t k = 0; k < found.size (); ++k)
     {
       const PointT &q = next[found[k]];
-      if (!isOrientedPoint (q))
+      if (!detail::isOrientedPoint (q))
         continue;
       const float w = kernel.spatial (d2[k]) * kernel.normal ((q.getNormalVector3fMap () - n).squaredNorm ());
       offset += w * (current[found[k]].getVector3fMap () - current[i].getVector3fMap ()).dot (n);
@@ -118,14 +118,14 @@ BilateralPreprocessor<PointT>::applyFilter (PointCloud &output)
   SearchPtr search = search_;
   if (!search)
     search.reset (new VoxelHashSearch<PointT> (16));
-  const int threads = resolveThreadCount (threads_);
+  const int threads = detail::resolveThreadCount (threads_);
   for (int round = 0; round < iterations_; ++round)
   {
     search->setInputCloud (current);
     const float sigma_d = sigma_d_ > 0.f ? sigma_d_ : detail::automaticSigmaD (*current, *search);
     if (!(sigma_d > 0.f))
       break;
-    const BilateralKernel kernel{sigma_d, sigma_n_};
+    const detail::BilateralKernel kernel{sigma_d, sigma_n_};
     const double radius = 3.0 * sigma_d;
     PointCloud next = *current;
     detail::filterNormals (*current, *search, kernel, radius, threads, next);

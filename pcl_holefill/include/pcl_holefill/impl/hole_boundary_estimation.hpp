@@ -4,11 +4,11 @@
  */
 #pragma once
 
-#include <pcl_holefill/boundary_point_test.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
-#include <pcl_holefill/loop_tracing.h>
-#include <pcl_holefill/point_validity.h>
-#include <pcl_holefill/thread_count.h>
+#include <pcl_holefill/detail/loop_tracing.h>
+#include <pcl_holefill/detail/point_validity.h>
+#include <pcl_holefill/detail/thread_count.h>
 
 #include <pcl/console/print.h>
 
@@ -78,7 +78,7 @@ HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
 {
   if (!initCompute ())
     return false;
-  if (!indicesInRange (*indices_, input_->size ()))
+  if (!detail::indicesInRange (*indices_, input_->size ()))
   {
     PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] The indices set with setIndices() address points "
                "outside the cloud (%zu points): no loop.\n", caller, input_->size ());
@@ -86,7 +86,7 @@ HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
     return false;
   }
   usable_.reset (new pcl::Indices);
-  const std::size_t skipped = keepOrientedPoints (*input_, *indices_, *usable_);
+  const std::size_t skipped = detail::keepOrientedPoints (*input_, *indices_, *usable_);
   deinitCompute ();
   if (skipped > 0)
     PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Skipped %zu of %zu points with non-finite "
@@ -110,9 +110,9 @@ HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
   unordered.reserve (usable_->size ());
   for (const auto i : *usable_)
     unordered.push_back ((*input_)[i].getVector3fMap ());
-  const float cell = PointGrid::suggestCellSize (unordered, k_);
+  const float cell = detail::PointGrid::suggestCellSize (unordered, k_);
   const std::vector<int> order =
-      PointGrid::spatialOrder (unordered, cell, static_cast<int> (resolveThreadCount (threads_)));
+      detail::PointGrid::spatialOrder (unordered, cell, static_cast<int> (detail::resolveThreadCount (threads_)));
   // Repeated positions would fill the k nearest with copies of one
   // neighbour: only the first of each is used (spatialOrder puts them together).
   pcl::IndicesPtr ordered (new pcl::Indices);
@@ -141,7 +141,7 @@ HoleBoundaryEstimation<PointT>::copyUsablePoints ()
   positions_.resize (usable_->size ());
   normals_.resize (usable_->size ());
   // Each usable index once: the writes never meet.
-#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(static)
+#pragma omp parallel for num_threads(detail::resolveThreadCount (threads_)) schedule(static)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (usable_->size ()); ++i)
   {
     const PointT &p = (*input_)[(*usable_)[i]];
@@ -173,7 +173,7 @@ HoleBoundaryEstimation<PointT>::nearestUsable (std::size_t local, int k, std::ve
     }
     return;
   }
-  thread_local std::vector<PointGrid::Neighbour> found;
+  thread_local std::vector<detail::PointGrid::Neighbour> found;
   grid_.nearestK (positions_[local], k + 1, found);
   for (const auto &n : found)
     if (n.id != static_cast<int> (local))
@@ -194,7 +194,7 @@ HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &positi
     std::vector<float> d2;
     return search_->nearestKSearch (query, 1, found, d2) > 0 ? found[0] : -1;
   }
-  std::vector<PointGrid::Neighbour> found;
+  std::vector<detail::PointGrid::Neighbour> found;
   grid_.nearestK (position, 1, found);
   return found.empty () ? -1 : (*usable_)[found[0].id];
 }
@@ -213,7 +213,7 @@ HoleBoundaryEstimation<PointT>::usableWithin (int local, float radius, std::vect
         ids.push_back (local_of_[i]);
     return;
   }
-  thread_local std::vector<PointGrid::Neighbour> found;
+  thread_local std::vector<detail::PointGrid::Neighbour> found;
   grid_.withinRadius (positions_[local], radius, found);
   for (const auto &n : found)
     if (n.id != local)
@@ -221,7 +221,7 @@ HoleBoundaryEstimation<PointT>::usableWithin (int local, float radius, std::vect
 }
 
 template <typename PointT> bool
-HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const AngularGap &gap, float diameter,
+HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::AngularGap &gap, float diameter,
                                                   float pitch) const
 {
   thread_local std::vector<int> ids;
@@ -229,7 +229,7 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const AngularGap &g
   // A rim is ragged by about a pitch: the disc tested is that much smaller
   // than the hole it stands for.
   const float test_radius = 0.5f * diameter - detail::kRimRaggedness * pitch;
-  return pcl_holefill::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (),
+  return pcl_holefill::detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (),
                                          normals_.data (), ids.data (), static_cast<int> (ids.size ()), diameter,
                                          test_radius);
 }
@@ -252,8 +252,8 @@ HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
     points.push_back ((*input_)[i].getVector3fMap ());
     spacing += spacingOf (local_of_[i]);
   }
-  loop.length = loopLength (points, loop.closed);
-  loop.diameter = loopDiameter (points);
+  loop.length = detail::loopLength (points, loop.closed);
+  loop.diameter = detail::loopDiameter (points);
   loop.mean_spacing = loop.indices.empty () ? 0.f : spacing / static_cast<float> (loop.indices.size ());
 }
 
@@ -261,7 +261,7 @@ template <typename PointT> std::vector<typename HoleBoundaryEstimation<PointT>::
 HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
 {
   const std::size_t n = positions_.size ();
-  const int threads = resolveThreadCount (threads_);
+  const int threads = detail::resolveThreadCount (threads_);
   std::vector<RimPoint> rim_points;
   std::mutex rim_mutex;  // rim points are few: a lock per rim point is cheap
   std::vector<float> spacing_of (n, 0.f);
@@ -279,9 +279,9 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     }
     const float spacing = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
     spacing_of[i] = spacing;
-    const AngularGap gap =
-        largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
-    pitch_of[i] = samplingPitch (farthest, count, gap.angle > angle_threshold_ ? gap.angle : 0.f);
+    const detail::AngularGap gap =
+        detail::largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
+    pitch_of[i] = detail::samplingPitch (farthest, count, gap.angle > angle_threshold_ ? gap.angle : 0.f);
     if (gap.angle > angle_threshold_)
     {
       std::lock_guard<std::mutex> lock (rim_mutex);
@@ -291,7 +291,7 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   if (!search_)
   {
     // The grid's own cell-by-cell kNN: the fast path.
-    grid_.forEachNearestK (k_, threads, [&] (int i, const PointGrid::Neighbour *found, int count) {
+    grid_.forEachNearestK (k_, threads, [&] (int i, const detail::PointGrid::Neighbour *found, int count) {
       int ids[64];
       float d2[64];
       for (int j = 0; j < count && j < 64; ++j)
@@ -330,7 +330,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (std::vector<RimPoint> &rim_po
                                                    const std::vector<float> &pitch_of) const
 {
   std::vector<char> keep (rim_points.size (), 0);
-#pragma omp parallel for num_threads(resolveThreadCount (threads_)) schedule(dynamic, 64)
+#pragma omp parallel for num_threads(detail::resolveThreadCount (threads_)) schedule(dynamic, 64)
   for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t> (rim_points.size ()); ++r)
   {
     thread_local std::vector<int> ids;
@@ -352,7 +352,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (std::vector<RimPoint> &rim_po
 }
 
 template <typename PointT> BoundaryLoop
-HoleBoundaryEstimation<PointT>::finishLoop (const TracedLoop &traced, const std::vector<RimPoint> &rim,
+HoleBoundaryEstimation<PointT>::finishLoop (const detail::TracedLoop &traced, const std::vector<RimPoint> &rim,
                                             const std::vector<float> &pitch_of) const
 {
   BoundaryLoop loop;
@@ -367,13 +367,13 @@ HoleBoundaryEstimation<PointT>::finishLoop (const TracedLoop &traced, const std:
     loop_gaps.push_back (rim[m].gap.direction);
     pitch += pitch_of[rim[m].local];
   }
-  loop.indices = refineByMidpoints (
+  loop.indices = detail::refineByMidpoints (
       coarse, traced.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
       [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, 4 * coarse.size () + 64);
   measure (loop);
   loop.pitch = pitch / static_cast<float> (traced.members.size ());
   const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
-  loop.is_hole = loop.closed && gapsPointInside (loop_positions, loop_gaps) && loop.diameter >= min_diameter &&
+  loop.is_hole = loop.closed && detail::gapsPointInside (loop_positions, loop_gaps) && loop.diameter >= min_diameter &&
                  (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
   return loop;
 }
@@ -399,7 +399,7 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
     rim_gaps.push_back (r.gap.direction);
   }
   // 2. Chain the rim points into loops; 3. refine, measure and classify each.
-  for (const auto &traced : traceBoundaryLoops (rim_positions, rim_normals, rim_gaps, link_factor_ * mean_pitch_,
+  for (const auto &traced : detail::traceBoundaryLoops (rim_positions, rim_normals, rim_gaps, link_factor_ * mean_pitch_,
                                                 min_loop_points_))
     loops.push_back (finishLoop (traced, rim, pitch_of));
 }
@@ -438,7 +438,7 @@ HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature
   mean_spacing_ = static_cast<float> (sum / feature_indices.size ());
   loop.closed = closed;
   loop.is_hole = true;
-  loop.indices = refineByMidpoints (
+  loop.indices = detail::refineByMidpoints (
       feature_indices, closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
       [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, input_->size ());
   measure (loop);

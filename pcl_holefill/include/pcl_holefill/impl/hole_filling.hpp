@@ -5,18 +5,18 @@
 #pragma once
 
 #include <pcl_holefill/bilateral_preprocessor.h>
-#include <pcl_holefill/elastic_sampler.h>
+#include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/impl/bilateral_preprocessor.hpp>
-#include <pcl_holefill/impl/elastic_sampler.hpp>
+#include <pcl_holefill/detail/elastic_sampler.hpp>
 #include <pcl_holefill/impl/hole_boundary_estimation.hpp>
 #include <pcl_holefill/impl/voxel_hash_search.hpp>
-#include <pcl_holefill/loop_tracing.h>
+#include <pcl_holefill/detail/loop_tracing.h>
 #include <pcl_holefill/impl/normal_orientation.hpp>
 #include <pcl_holefill/normal_orientation.h>
-#include <pcl_holefill/point_validity.h>
-#include <pcl_holefill/thread_count.h>
+#include <pcl_holefill/detail/point_validity.h>
+#include <pcl_holefill/detail/thread_count.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
 #include <pcl/common/centroid.h>
@@ -137,7 +137,7 @@ heightFieldRms (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices 
   same_face.clear ();
   float reach = 0.f;
   for (const auto q : found)
-    if (isOrientedPoint (cloud[q]) &&
+    if (detail::isOrientedPoint (cloud[q]) &&
         (cloud[q].getNormalVector3fMap ().normalized () - n).norm () <= kCreaseNormalDifference)
     {
       same_face.push_back (q);
@@ -170,7 +170,7 @@ normalSpread (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &f
   const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
   differences.clear ();
   for (const auto q : found)
-    if (q != i && isOrientedPoint (cloud[q]))
+    if (q != i && detail::isOrientedPoint (cloud[q]))
       differences.push_back ((cloud[q].getNormalVector3fMap ().normalized () - n).norm ());
   return differences.empty () ? kNaN : median (differences);
 }
@@ -181,7 +181,7 @@ seesCrease (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &fou
 {
   const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
   return std::any_of (found.begin (), found.end (), [&] (int q) {
-    return isOrientedPoint (cloud[q]) &&
+    return detail::isOrientedPoint (cloud[q]) &&
            (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > kCreaseNormalDifference;
   });
 }
@@ -200,7 +200,7 @@ linearNormalResidual (const pcl::PointCloud<PointT> &cloud, int i, const pcl::In
   Eigen::Index rows = 0;
   for (const auto q : found)
   {
-    if (!isOrientedPoint (cloud[q]))
+    if (!detail::isOrientedPoint (cloud[q]))
       continue;
     const Eigen::Vector3f d = cloud[q].getVector3fMap () - x;
     a.row (rows) << 1.f, d.dot (u) / reach, d.dot (v) / reach;
@@ -343,10 +343,10 @@ HoleFilling<PointT>::collectHoles (const PointCloudConstPtr &working, const Sear
     // Measured like a detected loop: the report and the warnings need its size.
     std::vector<Eigen::Vector3f> positions;
     for (const auto i : mapped.indices)
-      if (isOrientedPoint ((*working)[i]))
+      if (detail::isOrientedPoint ((*working)[i]))
         positions.push_back ((*working)[i].getVector3fMap ());
-    mapped.length = loopLength (positions, mapped.closed);
-    mapped.diameter = loopDiameter (positions);
+    mapped.length = detail::loopLength (positions, mapped.closed);
+    mapped.diameter = detail::loopDiameter (positions);
     holes.push_back (std::move (mapped));
   }
   return true;
@@ -357,7 +357,7 @@ HoleFilling<PointT>::inputIsUsable () const
 {
   if (!checkParameters ())
     return false;
-  if (!indicesInRange (*indices_, input_->size ()))
+  if (!detail::indicesInRange (*indices_, input_->size ()))
   {
     PCL_ERROR ("[pcl_holefill::%s::applyFilter] The indices set with setIndices() address points outside the "
                "cloud (%zu points). Nothing filtered.\n", getClassName ().c_str (), input_->size ());
@@ -419,7 +419,7 @@ HoleFilling<PointT>::fillHoles (const PointCloud &working, pcl::search::Search<P
   reports_.assign (holes.size (), HoleReport ());
   // Holes side by side; a single hole gets the threads itself (its
   // candidates are placed side by side within each pass).
-  const int threads = static_cast<int> (resolveThreadCount (threads_));
+  const int threads = static_cast<int> (detail::resolveThreadCount (threads_));
   const int per_hole = holes.size () == 1 ? threads : 1;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (holes.size () > 1)
   for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
@@ -523,7 +523,7 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
     float nearest = 0.f, farthest = 0.f;
     for (std::size_t k = 0; k < found.size (); ++k)
     {
-      if (!(sqr_distances[k] > 0.f) || !isOrientedPoint (working[found[k]]))
+      if (!(sqr_distances[k] > 0.f) || !detail::isOrientedPoint (working[found[k]]))
         continue;  // the point itself, duplicates and unusable points say nothing about spacing
       nearest = positions.empty () ? sqr_distances[k] : std::min (nearest, sqr_distances[k]);
       farthest = std::max (farthest, sqr_distances[k]);
@@ -535,10 +535,10 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
     spacing_sum += std::sqrt (nearest);
     ids.resize (positions.size ());
     std::iota (ids.begin (), ids.end (), 0);
-    const AngularGap gap = largestAngularGap (working[i].getVector3fMap (),
+    const detail::AngularGap gap = detail::largestAngularGap (working[i].getVector3fMap (),
                                               working[i].getNormalVector3fMap ().normalized (), positions.data (),
                                               normals.data (), ids.data (), static_cast<int> (ids.size ()));
-    pitches.push_back (samplingPitch (farthest, static_cast<int> (positions.size ()), gap.angle));
+    pitches.push_back (detail::samplingPitch (farthest, static_cast<int> (positions.size ()), gap.angle));
   }
   if (pitches.empty () || !(spacing_sum > 0.0))
     return false;
@@ -546,7 +546,7 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
   std::nth_element (pitches.begin (), pitches.begin () + pitches.size () / 2, pitches.end ());
   scale.pitch = pitches[pitches.size () / 2];
   const float h = scale.spacing;
-  scale.d_eq = sigma_r_ > 0.f ? ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
+  scale.d_eq = sigma_r_ > 0.f ? detail::ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
                               : spacing_factor_ * scale.pitch;
   // r reaches 3.5 pitches at least: on random samples (h = p / 2) 4 h alone
   // is too few neighbours, and a fill of 150 passes drifts off the surface.
@@ -595,7 +595,7 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
 }
 
 template <typename PointT> void
-HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                                    const HoleScale &scale, HoleReport &report) const
 {
   const float h = scale.spacing;
@@ -631,9 +631,9 @@ HoleFilling<PointT>::setUpSampler (ElasticSampler<PointT> &sampler, const Surrou
   sampler.setBoundingBall (scale.centre, scale.bound);
 }
 
-template <typename PointT> Front
-HoleFilling<PointT>::resumeOpening (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
-                                    FrontChain opening, const HoleScale &scale, HoleReport &report) const
+template <typename PointT> detail::Front
+HoleFilling<PointT>::resumeOpening (detail::ElasticSampler<PointT> &sampler, Surroundings &surroundings,
+                                    detail::FrontChain opening, const HoleScale &scale, HoleReport &report) const
 {
   // The fill of an opening closes in on it: pass k stays inside the ball
   // around the opening's boundary shrunk by k d_eq / 2 (fronts move in by
@@ -652,9 +652,9 @@ HoleFilling<PointT>::resumeOpening (ElasticSampler<PointT> &sampler, Surrounding
   float radius = 0.f;
   for (const auto &p : positions)
     radius = std::max (radius, (p - centre).norm ());
-  const int budget = 2 * static_cast<int> (std::ceil (loopDiameter (positions) / (2.f * scale.d_eq))) + 2;
+  const int budget = 2 * static_cast<int> (std::ceil (detail::loopDiameter (positions) / (2.f * scale.d_eq))) + 2;
   const std::size_t outside_before = report.outside_bound;
-  Front ends{std::move (opening)};
+  detail::Front ends{std::move (opening)};
   for (int pass = 0; pass < budget; ++pass)
   {
     const float ball = radius + scale.d_eq - 0.5f * static_cast<float> (pass) * scale.d_eq;
@@ -676,39 +676,39 @@ HoleFilling<PointT>::stoppedNaturally (const HoleReport &report)
 }
 
 template <typename PointT> Termination
-HoleFilling<PointT>::terminationOf (const ContractionStats &stats, const Front &next, int pass,
+HoleFilling<PointT>::terminationOf (const detail::ContractionStats &stats, const detail::Front &next, int pass,
                                     float first_length, unsigned passes_done, int max_passes) const
 {
-  if (frontSize (next) < 3)
+  if (detail::frontSize (next) < 3)
     return Termination::kNoNewBoundary;
   const float ratio = stats.former_boundary_points > 0
                           ? static_cast<float> (stats.kept_control_points) / stats.former_boundary_points
                           : 0.f;
   if (ratio < termination_ratio_)
     return Termination::kControlRatio;
-  if (pass > 0 && frontLength (next) > max_growth_ * first_length)
+  if (pass > 0 && detail::frontLength (next) > max_growth_ * first_length)
     return Termination::kDiverging;
   if (passes_done >= static_cast<unsigned> (max_passes))
     return Termination::kPassLimit;
   return Termination::kNotStarted;  // not yet: go on
 }
 
-template <typename PointT> Front
-HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, Surroundings &surroundings,
-                                               Front front, const HoleScale &scale, HoleReport &report,
+template <typename PointT> detail::Front
+HoleFilling<PointT>::contractUntilTermination (detail::ElasticSampler<PointT> &sampler, Surroundings &surroundings,
+                                               detail::Front front, const HoleScale &scale, HoleReport &report,
                                                int pass_budget) const
 {
   // Growth is measured against the first contracted boundary, which is
   // sampled like every later one (the input rim is jagged, hence longer).
   float first_length = 0.f;
   float pass_radius = scale.radius;
-  Front next;
+  detail::Front next;
   report.termination = Termination::kPassLimit;
   for (int pass = 0; pass < pass_budget && report.passes < static_cast<unsigned> (scale.max_passes); ++pass)
   {
     sampler.setRadius (pass_radius);
     sampler.setSigmaD (sigma_d_ > 0.f ? sigma_d_ : 0.5f * pass_radius);
-    ContractionStats stats;
+    detail::ContractionStats stats;
     if (!sampler.contract (front, next, stats))
     {
       report.termination = Termination::kNotStarted;
@@ -723,7 +723,7 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
                stats.repelled, stats.too_close, stats.rejected_by_constraint, stats.unsupported,
                stats.outside_bound, stats.samples);
     // B joins the surface: other fields from the nearest known point.
-    std::vector<FrontVertex> joining;
+    std::vector<detail::FrontVertex> joining;
     for (const auto &chain : next)
       joining.insert (joining.end (), chain.vertices.begin (), chain.vertices.end ());
     std::vector<PointT, Eigen::aligned_allocator<PointT>> joined (joining.size ());
@@ -742,7 +742,7 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
     surroundings.cloud->insert (surroundings.cloud->end (), joined.begin (), joined.end ());
     surroundings.search->indexNewPoints ();
     if (pass == 0)
-      first_length = frontLength (next);
+      first_length = detail::frontLength (next);
     const Termination end = terminationOf (stats, next, pass, first_length, report.passes, scale.max_passes);
     if (end != Termination::kNotStarted)
     {
@@ -758,14 +758,14 @@ HoleFilling<PointT>::contractUntilTermination (ElasticSampler<PointT> &sampler, 
   return front;
 }
 
-template <typename PointT> Front
-HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front &last_front,
+template <typename PointT> detail::Front
+HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const detail::Front &last_front,
                                    const HoleScale &scale, HoleReport &report) const
 {
   // The boundary where the fill stopped, and every filled point: a gap left
   // early (between the rim and the first pass, or where a front was cut)
   // lies next to filled points too.
-  std::vector<FrontVertex> tested;
+  std::vector<detail::FrontVertex> tested;
   for (const auto &chain : last_front)
     tested.insert (tested.end (), chain.vertices.begin (), chain.vertices.end ());
   for (std::size_t i = surroundings.input_points; i < surroundings.cloud->size (); ++i)
@@ -792,14 +792,14 @@ HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front
   // shows on several points spread over more than the disc's radius; a tight
   // group of a few is the apex of a convex corner, whose faces, unfolded into
   // one plane, always leave an empty wedge.
-  const auto loops = traceBoundaryLoops (open, open_normals, open_gaps, diameter,
+  const auto loops = detail::traceBoundaryLoops (open, open_normals, open_gaps, diameter,
                                          static_cast<int> (detail::kMinOpenPoints));
-  Front openings;
+  detail::Front openings;
   report.open_points = 0;
   report.open_diameter = 0.f;
   for (const auto &loop : loops)
   {
-    FrontChain chain;
+    detail::FrontChain chain;
     chain.closed = loop.closed;
     std::vector<Eigen::Vector3f> positions;
     for (const int m : loop.members)
@@ -807,7 +807,7 @@ HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front
       chain.vertices.push_back ({open[m], open_normals[m]});
       positions.push_back (open[m]);
     }
-    const float spread = loopDiameter (positions);
+    const float spread = detail::loopDiameter (positions);
     if (spread < 0.5f * diameter)
       continue;
     report.open_points += chain.vertices.size ();
@@ -818,15 +818,15 @@ HoleFilling<PointT>::checkClosure (const Surroundings &surroundings, const Front
   return openings;
 }
 
-template <typename PointT> Front
-HoleFilling<PointT>::resumable (const Front &openings, const HoleScale &scale)
+template <typename PointT> detail::Front
+HoleFilling<PointT>::resumable (const detail::Front &openings, const HoleScale &scale)
 {
   // Only openings inside the rim and on one smooth piece of surface (their
   // boundary normals within kResumeMaxNormalSpread of their mean). An
   // opening across an edge or a corner is not taken up: contracted alone,
   // one face's front runs past the edge where the other face has no fill
   // to stop it (the combination constraint needs both).
-  Front kept;
+  detail::Front kept;
   for (const auto &chain : openings)
   {
     bool inside = true;
@@ -837,7 +837,7 @@ HoleFilling<PointT>::resumable (const Front &openings, const HoleScale &scale)
       mean += v.normal;
     }
     const bool smooth = mean.norm () > 0.f &&
-                        std::all_of (chain.vertices.begin (), chain.vertices.end (), [&] (const FrontVertex &v) {
+                        std::all_of (chain.vertices.begin (), chain.vertices.end (), [&] (const detail::FrontVertex &v) {
                           return v.normal.dot (mean.normalized ()) >= detail::kResumeMinNormalCosine;
                         });
     if (inside && smooth)
@@ -847,7 +847,7 @@ HoleFilling<PointT>::resumable (const Front &openings, const HoleScale &scale)
 }
 
 template <typename PointT> bool
-HoleFilling<PointT>::emptyDiscAt (const Surroundings &surroundings, const FrontVertex &v, float diameter,
+HoleFilling<PointT>::emptyDiscAt (const Surroundings &surroundings, const detail::FrontVertex &v, float diameter,
                                   Eigen::Vector3f &gap_direction) const
 {
   thread_local std::vector<Eigen::Vector3f> positions, normals;
@@ -868,11 +868,11 @@ HoleFilling<PointT>::emptyDiscAt (const Surroundings &surroundings, const FrontV
   ids.resize (positions.size ());
   std::iota (ids.begin (), ids.end (), 0);
   const int count = static_cast<int> (ids.size ());
-  const AngularGap gap =
-      largestAngularGap (v.position, v.normal, positions.data (), normals.data (), ids.data (), count);
+  const detail::AngularGap gap =
+      detail::largestAngularGap (v.position, v.normal, positions.data (), normals.data (), ids.data (), count);
   gap_direction = gap.direction;
   return gap.angle > static_cast<float> (M_PI / 2.0) &&
-         emptyDiscTouches (v.position, v.normal, gap, positions.data (), normals.data (), ids.data (), count,
+         detail::emptyDiscTouches (v.position, v.normal, gap, positions.data (), normals.data (), ids.data (), count,
                            diameter, detail::kOpenDiscFill * 0.5f * diameter);
 }
 
@@ -909,7 +909,7 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   // 1. The rim (usable points only) and the hole's scale.
   pcl::Indices rim;
   for (const auto i : loop.indices)
-    if (i >= 0 && static_cast<std::size_t> (i) < working.size () && isOrientedPoint (working[i]))
+    if (i >= 0 && static_cast<std::size_t> (i) < working.size () && detail::isOrientedPoint (working[i]))
       rim.push_back (i);
   HoleScale scale;
   if (rim.size () < 3 || !measureRim (working, search, rim, scale))
@@ -927,34 +927,34 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   // 2. The surroundings, and the sampler working on them.
   Surroundings surroundings;
   gatherSurroundings (working, search, rim, scale, surroundings);
-  ElasticSampler<PointT> sampler;
+  detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
   sampler.setNumberOfThreads (threads);
   surroundings.threads = threads;
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).
-  Front front (1);
+  detail::Front front (1);
   front[0].closed = loop.closed;
   for (const auto i : surroundings.rim)
   {
     const PointT &p = (*surroundings.cloud)[i];
     front[0].vertices.push_back ({p.getVector3fMap (), p.getNormalVector3fMap ().normalized ()});
   }
-  const Front last = contractUntilTermination (sampler, surroundings, std::move (front), scale, report);
+  const detail::Front last = contractUntilTermination (sampler, surroundings, std::move (front), scale, report);
 
   // 4. Is it closed? Where it is not and the fronts stopped by the paper's
   // rule, a part of the hole was abandoned (a front cut where its candidates
   // overshot, typically on rough estimated normals along an edge, while the
   // rest closed elsewhere): contract again from each opening's own boundary.
-  Front openings = resumable (checkClosure (surroundings, last, scale, report), scale);
+  detail::Front openings = resumable (checkClosure (surroundings, last, scale, report), scale);
   for (int round = 0; round < detail::kResumeRounds && !openings.empty () && stoppedNaturally (report) &&
                       report.outside_bound == 0;
        ++round)
   {
-    Front again;
+    detail::Front again;
     for (auto &opening : openings)
     {
-      const Front ends = resumeOpening (sampler, surroundings, std::move (opening), scale, report);
+      const detail::Front ends = resumeOpening (sampler, surroundings, std::move (opening), scale, report);
       again.insert (again.end (), ends.begin (), ends.end ());
     }
     sampler.setBoundingBall (scale.centre, scale.bound);

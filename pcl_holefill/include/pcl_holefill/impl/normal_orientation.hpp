@@ -5,8 +5,8 @@
 #pragma once
 
 #include <pcl_holefill/normal_orientation.h>
-#include <pcl_holefill/point_grid.h>
-#include <pcl_holefill/point_validity.h>
+#include <pcl_holefill/detail/point_grid.h>
+#include <pcl_holefill/detail/point_validity.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,7 +56,7 @@ public:
   OrientationWalk (pcl::PointCloud<PointT> &cloud, std::vector<int> usable, std::vector<Eigen::Vector3f> positions,
                    int k)
     : cloud_ (cloud), usable_ (std::move (usable)), positions_ (std::move (positions)), k_ (k),
-      grid_ (PointGrid::suggestCellSize (positions_, k)), reached_ (usable_.size (), 0)
+      grid_ (detail::PointGrid::suggestCellSize (positions_, k)), reached_ (usable_.size (), 0)
   {
     grid_.build (positions_);
   }
@@ -148,9 +148,9 @@ private:
   const std::vector<int> usable_;                   //!< cloud index of each oriented point
   const std::vector<Eigen::Vector3f> positions_;    //!< their positions
   const int k_;
-  PointGrid grid_;
+  detail::PointGrid grid_;
   std::vector<char> reached_;
-  std::vector<PointGrid::Neighbour> near_;
+  std::vector<detail::PointGrid::Neighbour> near_;
   std::priority_queue<Link> links_;
   std::vector<int> part_;
 };
@@ -162,7 +162,7 @@ orientNormalsConsistently (pcl::PointCloud<PointT> &cloud, int k)
   std::vector<Eigen::Vector3f> positions;
   std::vector<int> usable;
   for (std::size_t i = 0; i < cloud.size (); ++i)
-    if (isOrientedPoint (cloud[i]))
+    if (detail::isOrientedPoint (cloud[i]))
     {
       usable.push_back (static_cast<int> (i));
       positions.push_back (cloud[i].getVector3fMap ());
@@ -190,16 +190,16 @@ flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k, std::size_t 
   std::vector<Eigen::Vector3f> normals;
   const std::size_t keep_every = std::max<std::size_t> (1, cloud.size () / (25 * std::max<std::size_t> (samples, 1)));
   for (std::size_t i = 0; i < cloud.size (); i += keep_every)
-    if (isOrientedPoint (cloud[i]))
+    if (detail::isOrientedPoint (cloud[i]))
     {
       positions.push_back (cloud[i].getVector3fMap ());
       normals.push_back (cloud[i].getNormalVector3fMap ().normalized ());
     }
   if (positions.size () < 2 || samples == 0)
     return 0.f;
-  PointGrid grid (PointGrid::suggestCellSize (positions, k));
+  detail::PointGrid grid (detail::PointGrid::suggestCellSize (positions, k));
   grid.build (positions);
-  std::vector<PointGrid::Neighbour> near;
+  std::vector<detail::PointGrid::Neighbour> near;
   std::size_t pairs = 0, flipped = 0;
   const std::size_t stride = std::max<std::size_t> (1, positions.size () / samples);
   for (std::size_t i = 0; i < positions.size (); i += stride)

@@ -36,7 +36,7 @@ VoxelHashSearch<PointT>::setInputCloud (const PointCloudConstPtr &cloud,
     positions.push_back ((*cloud)[indices ? (*indices)[i] : i].getVector3fMap ());
   float cell = requested_cell_size_;
   if (!(cell > 0.f))
-    cell = PointGrid::suggestCellSize (positions, neighbours_per_cell_block_);
+    cell = detail::PointGrid::suggestCellSize (positions, neighbours_per_cell_block_);
   grid_.reset (cell > 0.f ? cell : 1.f);
   // Ids are cloud indices, so results need no translation.
   if (indices)
@@ -60,7 +60,7 @@ VoxelHashSearch<PointT>::indexNewPoints ()
 }
 
 template <typename PointT> int
-VoxelHashSearch<PointT>::toIndices (const std::vector<PointGrid::Neighbour> &found,
+VoxelHashSearch<PointT>::toIndices (const std::vector<detail::PointGrid::Neighbour> &found,
                                     pcl::Indices &k_indices, std::vector<float> &k_sqr_distances) const
 {
   k_indices.resize (found.size ());
@@ -77,7 +77,7 @@ template <typename PointT> int
 VoxelHashSearch<PointT>::nearestKSearch (const PointT &point, int k, pcl::Indices &k_indices,
                                          std::vector<float> &k_sqr_distances) const
 {
-  std::vector<PointGrid::Neighbour> found;
+  std::vector<detail::PointGrid::Neighbour> found;
   grid_.nearestK (point.getVector3fMap (), k, found);
   return toIndices (found, k_indices, k_sqr_distances);
 }
@@ -86,7 +86,7 @@ template <typename PointT> int
 VoxelHashSearch<PointT>::radiusSearch (const PointT &point, double radius, pcl::Indices &k_indices,
                                        std::vector<float> &k_sqr_distances, unsigned int max_nn) const
 {
-  std::vector<PointGrid::Neighbour> found;
+  std::vector<detail::PointGrid::Neighbour> found;
   grid_.withinRadius (point.getVector3fMap (), static_cast<float> (radius), found, max_nn);
   if (sorted_results_ && max_nn == 0)
     std::sort (found.begin (), found.end (), [] (const auto &a, const auto &b) {

@@ -4,17 +4,17 @@
  */
 #pragma once
 
-#include <pcl_holefill/front.h>
-#include <pcl_holefill/normal_propagation.h>
-#include <pcl_holefill/point_grid.h>
+#include <pcl_holefill/detail/front.h>
+#include <pcl_holefill/detail/normal_propagation.h>
+#include <pcl_holefill/detail/point_grid.h>
 
-#include <pcl/pcl_base.h>
+#include <pcl/point_cloud.h>
 #include <pcl/search/search.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief Section 4 of the paper: one pass of hole-boundary contraction.
   *
@@ -48,7 +48,7 @@ namespace pcl_holefill
   * given search method; the caller appends each pass's B to it.
   */
 template <typename PointT>
-class ElasticSampler : public pcl::PCLBase<PointT>
+class ElasticSampler
 {
 public:
   using Ptr = pcl::shared_ptr<ElasticSampler<PointT>>;
@@ -61,8 +61,12 @@ public:
   static float
   equilibriumDistanceFromSigmaR (float sigma_r) { return sigma_r * sigma_r * std::log (1e4f); }
 
+  /** \brief The surface known so far (every point of it is used: a stage
+    * of HoleFilling, it takes no indices). */
   void
-  setInputCloud (const PointCloudConstPtr &cloud) override;
+  setInputCloud (const PointCloudConstPtr &cloud);
+  const PointCloudConstPtr &
+  getInputCloud () const { return input_; }
 
   void
   setSearchMethod (const SearchPtr &search);
@@ -159,10 +163,9 @@ public:
   optimisePosition (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
                     Eigen::Vector3f &normal) const;
 
-protected:
-  using pcl::PCLBase<PointT>::input_;
-
 private:
+  PointCloudConstPtr input_;
+
   enum class Verdict
   {
     kKept,
@@ -247,8 +250,8 @@ private:
   mutable std::vector<signed char> curvature_signs_;  //!< 2 = not computed yet
 };
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail
 
 #ifdef PCL_NO_PRECOMPILE
-#include <pcl_holefill/impl/elastic_sampler.hpp>
+#include <pcl_holefill/detail/elastic_sampler.hpp>
 #endif

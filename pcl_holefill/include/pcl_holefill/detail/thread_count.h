@@ -6,7 +6,7 @@
 
 #include <thread>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief PCL's meaning of a thread count: 0 is every core. */
 inline int
@@ -18,4 +18,4 @@ resolveThreadCount (unsigned int requested)
   return cores > 0 ? static_cast<int> (cores) : 1;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

@@ -4,16 +4,15 @@
  */
 #pragma once
 
+#include <pcl_holefill/hole_filling_parameters.h>
+
 #include <Eigen/Core>
 
 #include <limits>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
-/** \brief sigma_n meaning "no normal-dissimilarity constraint" (the paper's "Sup"). */
-constexpr float kSup = std::numeric_limits<float>::infinity ();
-
 /** \brief The two Gaussians of the paper's equations (1) and (7): g1 over the
   * distance between points (std sigma_d, cloud units) and g2 over the
   * difference of unit normals |n_p - n_ref| (std sigma_n, no unit; |n_p -
@@ -85,4 +84,4 @@ float
 positionOffset (const Neighbourhood &neighbours, const Eigen::Vector3f &position,
                 const SurfaceEstimate &estimate, const BilateralKernel &kernel);
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

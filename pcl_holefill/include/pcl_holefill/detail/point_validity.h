@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief True for a point with finite coordinates and a finite normal that is
   * not (nearly) zero: the only points the method can use. */
@@ -46,4 +46,4 @@ indicesInRange (const pcl::Indices &indices, std::size_t size)
   return true;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

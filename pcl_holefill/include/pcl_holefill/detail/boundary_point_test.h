@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief The widest empty sector around a point, seen in its tangent plane. */
 struct AngularGap
@@ -102,4 +102,4 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
                   float diameter, float test_radius);
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

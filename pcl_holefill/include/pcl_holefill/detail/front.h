@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief One point of a hole boundary that the filler moves inwards. */
 struct FrontVertex
@@ -56,4 +56,4 @@ frontSize (const Front &front)
 float
 frontLength (const Front &front);
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

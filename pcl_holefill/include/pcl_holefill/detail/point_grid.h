@@ -10,7 +10,7 @@
 #include <functional>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief A uniform hash grid over 3D points that supports exact k-nearest and
   * radius queries and cheap insertion of new points.
@@ -170,4 +170,4 @@ private:
   std::vector<std::vector<Entry>> extra_;
 };
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

@@ -4,12 +4,12 @@
  */
 #pragma once
 
-#include <pcl_holefill/local_surface.h>
+#include <pcl_holefill/detail/local_surface.h>
 
-#include <pcl/pcl_base.h>
+#include <pcl/point_cloud.h>
 #include <pcl/search/search.h>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief Section 3.4 of the paper: the normal of a candidate filling point,
   * propagated from the oriented points around it (equations 1-2).
@@ -25,13 +25,21 @@ namespace pcl_holefill
   * (see propagateNormal()).
   */
 template <typename PointT>
-class NormalPropagation : public pcl::PCLBase<PointT>
+class NormalPropagation
 {
 public:
   using Ptr = pcl::shared_ptr<NormalPropagation<PointT>>;
   using ConstPtr = pcl::shared_ptr<const NormalPropagation<PointT>>;
   using PointCloud = pcl::PointCloud<PointT>;
+  using PointCloudConstPtr = typename PointCloud::ConstPtr;
   using SearchPtr = typename pcl::search::Search<PointT>::Ptr;
+
+  /** \brief The oriented points the normals are propagated from (every
+    * point is used: a stage of HoleFilling, it takes no indices). */
+  void
+  setInputCloud (const PointCloudConstPtr &cloud) { input_ = cloud; }
+  const PointCloudConstPtr &
+  getInputCloud () const { return input_; }
 
   /** \brief The search over the input cloud (required; given the cloud by the caller). */
   void
@@ -97,10 +105,8 @@ public:
   bool
   checkParameters (const char *caller) const;
 
-protected:
-  using pcl::PCLBase<PointT>::input_;
-
 private:
+  PointCloudConstPtr input_;
   SearchPtr search_;
   float radius_ = 0.f;
   BilateralKernel kernel_;
@@ -108,8 +114,8 @@ private:
   unsigned int threads_ = 0;
 };
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail
 
 #ifdef PCL_NO_PRECOMPILE
-#include <pcl_holefill/impl/normal_propagation.hpp>
+#include <pcl_holefill/detail/normal_propagation.hpp>
 #endif

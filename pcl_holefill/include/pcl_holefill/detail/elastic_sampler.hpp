@@ -4,17 +4,15 @@
  */
 #pragma once
 
-#include <pcl_holefill/elastic_sampler.h>
-#include <pcl_holefill/impl/normal_propagation.hpp>
+#include <pcl_holefill/detail/elastic_sampler.h>
+#include <pcl_holefill/detail/normal_propagation.hpp>
 
 #include <pcl/console/print.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_holefill
-{
-namespace detail
+namespace pcl_holefill::detail
 {
 // A control candidate is repelled by a former boundary point closer than
 // d_eq (eq. 5); the slack absorbs the small shift of the position optimisation.
@@ -42,12 +40,11 @@ chainTangent (const FrontChain &chain, int i)
   }
   return Eigen::Vector3f::Zero ();
 }
-}  // namespace detail
 
 template <typename PointT> void
 ElasticSampler<PointT>::setInputCloud (const PointCloudConstPtr &cloud)
 {
-  pcl::PCLBase<PointT>::setInputCloud (cloud);
+  input_ = cloud;
   propagation_.setInputCloud (cloud);
   curvature_signs_.clear ();
 }
@@ -144,7 +141,7 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
   query.getVector3fMap () = position;
   pcl::Indices found;
   std::vector<float> sqr_distances;
-  propagation_.getSearchMethod ()->radiusSearch (query, detail::kDuplicateReach * equilibrium_distance_, found,
+  propagation_.getSearchMethod ()->radiusSearch (query, kDuplicateReach * equilibrium_distance_, found,
                                                   sqr_distances, 1);
   if (!found.empty ())
     return Verdict::kTooClose;
@@ -180,7 +177,7 @@ ElasticSampler<PointT>::contractingDirections (const FrontChain &chain) const
   for (int i = 0; i < m; ++i)
   {
     const FrontVertex &v = chain.vertices[i];
-    directions[i] = v.normal.cross (detail::chainTangent (chain, i));
+    directions[i] = v.normal.cross (chainTangent (chain, i));
     if (directions[i].norm () > 1e-6f)
       directions[i].normalize ();
     else
@@ -225,7 +222,7 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
     if (verdicts[i] == Verdict::kKept)
     {
       std::vector<PointGrid::Neighbour> close;
-      pass.former_grid.withinRadius (c.position, detail::kRepulsionReach * d_eq, close);
+      pass.former_grid.withinRadius (c.position, kRepulsionReach * d_eq, close);
       if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
         verdicts[i] = Verdict::kRepelled;
     }
@@ -249,12 +246,12 @@ ElasticSampler<PointT>::controlCurve (const std::vector<FrontVertex> &controls, 
   std::vector<std::vector<FrontVertex>> runs (1);
   for (std::size_t k = 0; k < controls.size (); ++k)
   {
-    if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > detail::kChainBreak * d_eq)
+    if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > kChainBreak * d_eq)
       runs.emplace_back ();
     runs.back ().push_back (controls[k]);
   }
   wraps = closed_chain && controls.size () > 2 &&
-          (controls.front ().position - controls.back ().position).norm () <= detail::kChainBreak * d_eq;
+          (controls.front ().position - controls.back ().position).norm () <= kChainBreak * d_eq;
   if (wraps && runs.size () > 1)
   {
     // The last run continues into the first across the loop's start.
@@ -329,10 +326,10 @@ ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, b
     const FrontVertex &sample = samples[k];
     if (placed[k] != Verdict::kKept)
       continue;
-    pass.sample_grid.withinRadius (sample.position, detail::kDuplicateReach * d_eq, near);
+    pass.sample_grid.withinRadius (sample.position, kDuplicateReach * d_eq, near);
     if (!near.empty ())
       continue;
-    if (!out.vertices.empty () && (sample.position - out.vertices.back ().position).norm () > detail::kChainBreak * d_eq)
+    if (!out.vertices.empty () && (sample.position - out.vertices.back ().position).norm () > kChainBreak * d_eq)
     {
       next.push_back (out);
       out.vertices.clear ();
@@ -342,7 +339,7 @@ ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, b
     out.vertices.push_back (sample);
   }
   out.closed = closed_run && !broken && out.vertices.size () > 2 &&
-               (out.vertices.front ().position - out.vertices.back ().position).norm () <= detail::kChainBreak * d_eq;
+               (out.vertices.front ().position - out.vertices.back ().position).norm () <= kChainBreak * d_eq;
   if (!out.vertices.empty ())
     next.push_back (out);
 }
@@ -400,6 +397,6 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
   return true;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail
 
-#define PCL_INSTANTIATE_ElasticSampler(T) template class pcl_holefill::ElasticSampler<T>;
+#define PCL_INSTANTIATE_ElasticSampler(T) template class pcl_holefill::detail::ElasticSampler<T>;

@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 /** \brief The boundary points of one connected rim, in walking order. */
 struct TracedLoop
@@ -61,4 +61,4 @@ loopDiameter (const std::vector<Eigen::Vector3f> &loop_positions);
 float
 loopLength (const std::vector<Eigen::Vector3f> &loop_positions, bool closed);
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail

@@ -4,15 +4,15 @@
  */
 #pragma once
 
-#include <pcl_holefill/normal_propagation.h>
-#include <pcl_holefill/point_validity.h>
-#include <pcl_holefill/thread_count.h>
+#include <pcl_holefill/detail/normal_propagation.h>
+#include <pcl_holefill/detail/point_validity.h>
+#include <pcl_holefill/detail/thread_count.h>
 
 #include <pcl/console/print.h>
 
 #include <cmath>
 
-namespace pcl_holefill
+namespace pcl_holefill::detail
 {
 template <typename PointT> bool
 NormalPropagation<PointT>::checkParameters (const char *caller) const
@@ -83,6 +83,6 @@ NormalPropagation<PointT>::propagate (PointCloud &candidates, const std::vector<
   return true;
 }
 
-}  // namespace pcl_holefill
+}  // namespace pcl_holefill::detail
 
-#define PCL_INSTANTIATE_NormalPropagation(T) template class pcl_holefill::NormalPropagation<T>;
+#define PCL_INSTANTIATE_NormalPropagation(T) template class pcl_holefill::detail::NormalPropagation<T>;

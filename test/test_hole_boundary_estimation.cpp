@@ -123,7 +123,9 @@ TEST (HoleBoundaryEstimation, MaxHoleDiameterTurnsLargeHolesIntoBorders)
   ASSERT_EQ (countHoles (loops), 1u);
   for (const auto &l : loops)
     if (l.is_hole)
+    {
       EXPECT_LT (l.diameter, 0.2f);
+    }
 }
 
 TEST (HoleBoundaryEstimation, InjectedKdTreeGivesTheSameLoops)

@@ -43,7 +43,7 @@ TEST (PointGrid, NearestKMatchesBruteForce)
   for (std::size_t i = 0; i < points.size (); ++i)
     grid.insert (points[i], static_cast<int> (i));
   std::vector<PointGrid::Neighbour> found;
-  for (const Eigen::Vector3f q : {Eigen::Vector3f (0, 0, 0), Eigen::Vector3f (0.9f, -0.9f, 0.f),
+  for (const Eigen::Vector3f &q : {Eigen::Vector3f (0, 0, 0), Eigen::Vector3f (0.9f, -0.9f, 0.f),
                                   Eigen::Vector3f (5.f, 5.f, 5.f)})
   {
     grid.nearestK (q, 12, found);

@@ -21,6 +21,17 @@ namespace pcl_holefill
   * sigma_d and g2 one of std sigma_n. The small sigma_n keeps sharp edges:
   * the other face's normals carry no weight. Points without a usable normal
   * are passed through unchanged. Output: the indexed points, filtered.
+  *
+  * \code
+  * pcl_holefill::BilateralPreprocessor<pcl::PointNormal> denoise;
+  * denoise.setInputCloud (cloud);
+  * denoise.setSigmaN (0.1f);           // keeps sharp edges
+  * pcl::PointCloud<pcl::PointNormal> smoothed;
+  * denoise.filter (smoothed);
+  * \endcode
+  *
+  * \note Stage 1 (sec. 3.2) of "Shape controllable geometry completion for
+  * point cloud models"; see HoleFilling for the citation.
   */
 template <typename PointT>
 class BilateralPreprocessor : public pcl::Filter<PointT>

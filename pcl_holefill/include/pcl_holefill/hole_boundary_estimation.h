@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace pcl_holefill
@@ -45,6 +46,19 @@ namespace pcl_holefill
   * Points with non-finite coordinates or a missing/zero normal are skipped
   * (with a PCL_WARN). setIndices() restricts the search to a subset; the
   * loops still index the input cloud.
+  *
+  * \code
+  * pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  * estimation.setInputCloud (cloud);   // oriented: normals required
+  * std::vector<pcl_holefill::BoundaryLoop> loops;
+  * estimation.compute (loops);
+  * for (const auto &loop : loops)
+  *   if (loop.is_hole)                 // the others are borders of an open surface
+  *     std::cout << loop.indices.size () << " rim points, " << loop.diameter << " across\n";
+  * \endcode
+  *
+  * \note Stage 2 (sec. 3.3) of "Shape controllable geometry completion for
+  * point cloud models", made automatic; see HoleFilling for the citation.
   */
 template <typename PointT>
 class HoleBoundaryEstimation : public pcl::PCLBase<PointT>
@@ -65,26 +79,25 @@ public:
   SearchPtr
   getSearchMethod () const { return search_; }
 
-  /** \brief Neighbours looked at per point (default 16, at least 3). */
+  /** \brief Neighbours looked at per point: parameters::kKSearch. */
   void
   setKSearch (int k) { k_ = k; }
   int
   getKSearch () const { return k_; }
 
-  /** \brief Widest empty sector (radians) a non-rim point may have
-    * (pi/2, the default, up to 2 pi). */
+  /** \brief Widest empty sector a point off the rim may have: parameters::kAngleThreshold. */
   void
   setAngleThreshold (float radians) { angle_threshold_ = radians; }
   float
   getAngleThreshold () const { return angle_threshold_; }
 
-  /** \brief Rim points closer than this many sampling pitches are chained (default 4.5: a rim of uniformly random samples, thinned to the points an empty disc touches, has steps of up to 4 pitches). */
+  /** \brief Rim points closer than this many sampling pitches are chained: parameters::kLinkDistanceFactor. */
   void
   setLinkDistanceFactor (float factor) { link_factor_ = factor; }
   float
   getLinkDistanceFactor () const { return link_factor_; }
 
-  /** \brief Loops with fewer points are ignored as noise (default 6). */
+  /** \brief Loops with fewer points are ignored as noise: parameters::kMinLoopPoints. */
   void
   setMinLoopPoints (int n) { min_loop_points_ = n; }
   int
@@ -105,7 +118,7 @@ public:
   float
   getMinHoleSize () const { return min_hole_pitches_; }
 
-  /** \brief The same in cloud units; 0 (default) = use setMinHoleSize. */
+  /** \brief The same in cloud units, when not 0: parameters::kMinHoleDiameter. */
   void
   setMinHoleDiameter (float diameter) { min_hole_diameter_ = diameter; }
   float
@@ -144,6 +157,12 @@ protected:
   using pcl::PCLBase<PointT>::indices_;
   using pcl::PCLBase<PointT>::initCompute;
   using pcl::PCLBase<PointT>::deinitCompute;
+
+  /** \brief The name messages print, as pcl::Feature's getClassName (). */
+  const std::string &
+  getClassName () const { return class_name_; }
+
+  std::string class_name_ = "HoleBoundaryEstimation";
 
 private:
   /** A usable point that the angular-gap test put on a rim. */
@@ -220,12 +239,12 @@ private:
   measure (BoundaryLoop &loop) const;
 
   SearchPtr search_;
-  int k_ = 16;
-  float angle_threshold_ = static_cast<float> (M_PI / 2.0);
-  float link_factor_ = 4.5f;
+  int k_ = static_cast<int> (parameters::kKSearch.default_value);
+  float angle_threshold_ = parameters::kAngleThreshold.default_value;
+  float link_factor_ = parameters::kLinkDistanceFactor.default_value;
   float min_hole_pitches_ = parameters::kMinHoleSize.default_value;
-  float min_hole_diameter_ = 0.f;
-  int min_loop_points_ = 6;
+  float min_hole_diameter_ = parameters::kMinHoleDiameter.default_value;
+  int min_loop_points_ = static_cast<int> (parameters::kMinLoopPoints.default_value);
   float max_hole_diameter_ = parameters::kMaxHoleDiameter.default_value;
   unsigned int threads_ = 0;
 

@@ -21,58 +21,59 @@
 namespace pcl_holefill
 {
 /** \brief Fills the holes of an oriented point cloud: the paper's Algorithm 1
-  * ("Shape controllable geometry completion for point cloud models") as a
-  * PCL filter.
+  * as a PCL filter.
   *
   * filter(output) writes every input point (of setIndices(), if given),
   * unchanged, then the filled points with their propagated normals; other
   * fields of a filled point (colour, intensity, ...) are copied from its
-  * nearest neighbour. Per hole: the boundary loop (found by
-  * HoleBoundaryEstimation, or given by setHoles()), then passes of normal
-  * propagation and elastic sampling (ElasticSampler) until the paper's
-  * termination rule; holes are independent and filled in parallel, in a
-  * deterministic order. getReports() tells what happened to each.
+  * nearest neighbour. Per hole, as Algorithm 1: measure the rim (the
+  * boundary loop found by HoleBoundaryEstimation, or given by setHoles()),
+  * contract it pass by pass (normal propagation, eq. 1-2; the control curve
+  * and the sampling along it, sec. 4.1-4.2; position optimisation, eq. 7-8;
+  * the combination constraint, sec. 4.4) until the termination rule of
+  * sec. 4.2, then report. Holes are independent and filled in parallel, in a
+  * deterministic order; getReports() tells what happened to each.
   *
-  * Parameters, with the paper's names. Lengths are in cloud units and, left
-  * at 0, derived from the mean nearest-neighbour distance h and the sampling
-  * pitch p around each hole, so the
-  * defaults work on any cloud without tuning:
-  *  - r (setRadius): neighbourhood of eq. (1) and (7); 0 = max(4h, 3.5p, 2.5 d_eq).
-  *  - shrink (setRadiusShrinkFactor): r <- r / shrink each pass (the paper's
-  *    Fig. 1(c) uses 1.1); 1 = constant. r never drops under max(2h, 1.5 d_eq).
-  *  - sigma_d (setSigmaD): std of g1; 0 = r/2.
-  *  - sigma_n (setSigmaN): std of g2 over |n_p - n_ref| (no unit; the paper
-  *    prints "BBL", which cannot apply to a normal difference): small (0.1)
-  *    recovers sharp edges, corners and apexes; kSup (the paper's "Sup")
-  *    switches g2 off for round patches. 0 (default) = per hole, twice the
-  *    spread of the normals around its rim, within 0.1..0.3: 0.1 on clean
-  *    rims (creases stay sharp; on clean smooth rims 0.1 and Sup give the
-  *    same error), wider where estimated normals are noisy, so that eq. (1)
-  *    keeps the neighbours that average the noise out. The report says
-  *    which value each hole got.
-  *  - sigma_r (setSigmaR): the elastic force's width. The equilibrium
-  *    distance, i.e. the spacing of the filled points, follows from eq. (6)
-  *    as d_eq = sigma_r^2 ln(10^4), taken literally in cloud units (sigma_r
-  *    in sqrt(cloud units)). The paper's Table 1 values (0.12-0.25 "BBL")
-  *    would give d_eq of 13-58 % of the model's size under any reading, so
-  *    they cannot be reused. 0 (default) = d_eq from the input density:
-  *    d_eq = spacing factor x p (setSpacingFactor, default 1.1), p the sampling
-  *    pitch around the rim, sqrt(surface area per point): the fill is then
-  *    as dense as the input, whatever its sampling (on uniformly random
-  *    samples h is about p/2, on Poisson-disk samples 0.9 p).
-  *  - termination ratio (setTerminationRatio): stop a hole when kept control
-  *    points / boundary points < ratio (paper: 30 %).
-  *  - max passes (setMaxPasses): hard bound on passes per hole; 0 (default)
-  *    = automatic, 4 x rim diameter / d_eq + 20 (four times what closing
-  *    the hole from all sides takes, so a large hole is never cut short).
-  *  - first order (setFirstOrder): continue the rim's curvature (default
-  *    true; false is the paper's zero-order eq. (1), which makes cones).
-  *    Per hole it is left out where the rim is noisy and its normals too
-  *    rough to extrapolate (HoleReport::first_order says which).
-  *  - denoise (setDenoise): the bilateral preprocessing of sec. 3.2 on the
-  *    input first (the only case where input points move; default off).
-  *  - max hole diameter (setMaxHoleDiameter): detected holes wider than
-  *    this are left alone (0 = fill all).
+  * Parameters keep the paper's names. Each one's default, range and unit is
+  * written once, in hole_filling_parameters.h (parameters::k...), and listed
+  * in doc/parameters.md. Lengths are in cloud units and, left at 0, derived
+  * per hole from the mean nearest-neighbour distance h and the sampling
+  * pitch p (sqrt of the surface area per point) around its rim, so the
+  * defaults work on any cloud without tuning. Where the paper is ambiguous:
+  *  - sigma_n is taken over |n_p - n_ref| (no unit; the paper prints "BBL",
+  *    which cannot apply to a normal difference). Small (0.1) recovers sharp
+  *    edges, corners and apexes; kSup (the paper's "Sup") switches g2 off for
+  *    round patches; 0 chooses per hole, twice the spread of the normals
+  *    around its rim within 0.1..0.3, and the report says which value each
+  *    hole got.
+  *  - sigma_r gives the spacing of the filled points by eq. (6),
+  *    d_eq = sigma_r^2 ln(10^4), taken literally in cloud units. The paper's
+  *    Table 1 values (0.12-0.25 "BBL") would give d_eq of 13-58 % of the
+  *    model's size under any reading, so they cannot be reused; 0 takes d_eq
+  *    = spacing factor x p instead, so that the fill is as dense as the
+  *    input whatever its sampling.
+  *  - first order (beyond the paper) fits a linear normal field instead of
+  *    eq. (1)'s constant one, which makes cones on smooth holes; it is left
+  *    out per hole where the rim is noisy and its normals too rough to
+  *    extrapolate (HoleReport::first_order says which).
+  *
+  * \code
+  * pcl::PointCloud<pcl::PointNormal>::Ptr cloud (new pcl::PointCloud<pcl::PointNormal>);
+  * // ... read or compute an oriented cloud ...
+  * pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+  * filler.setInputCloud (cloud);
+  * filler.setSigmaN (0.1f);  // sharp edges; pcl_holefill::kSup for round patches; 0 = per hole
+  * pcl::PointCloud<pcl::PointNormal> filled;
+  * filler.filter (filled);   // the input points, unchanged, then the filled ones
+  * for (const auto &report : filler.getReports ())
+  *   std::cout << report.points_added << (report.closed ? " closed\n" : " open\n");
+  * \endcode
+  *
+  * \note The method of "Shape controllable geometry completion for point
+  * cloud models" (decomposing each pass of hole-boundary contraction into
+  * normal propagation and position sampling, with a normal-dissimilarity
+  * constraint for sharp features). The copy of the paper this project works
+  * from carries no author or venue line, so only its title is cited here.
   */
 template <typename PointT>
 class HoleFilling : public pcl::Filter<PointT>

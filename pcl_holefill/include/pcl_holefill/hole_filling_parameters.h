@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -23,7 +24,7 @@ struct ParameterSpec
   const char *name;          //!< the paper's name, as messages print it
   const char *meaning;       //!< what it does, in one line
   const char *option;        //!< the command's option ("" if it has none)
-  const char *setter;        //!< HoleFilling's setter
+  const char *setter;        //!< its setter (HoleFilling's unless a class is named)
   float default_value;
   float low;                 //!< smallest value accepted
   float high;                //!< largest value accepted (or, if high_open, the bound below it)
@@ -106,11 +107,36 @@ constexpr ParameterSpec kMinHoleSize{
     6.f, 2.f, 100.f, false, false,
     "sampling pitches: the empty disc a hole must hold"};
 
+// Detection only (HoleBoundaryEstimation; HoleFilling uses the defaults).
+
+constexpr ParameterSpec kKSearch{
+    "k", "neighbours of the rim test and of the local sampling pitch", "",
+    "HoleBoundaryEstimation::setKSearch", 16.f, 3.f, 64.f, false, false,
+    "points (PCL's BoundaryEstimation uses 16 too)"};
+constexpr ParameterSpec kAngleThreshold{
+    "angle threshold", "widest empty sector a point off the rim may have", "",
+    "HoleBoundaryEstimation::setAngleThreshold", static_cast<float> (M_PI / 2.0), static_cast<float> (M_PI / 2.0),
+    static_cast<float> (2.0 * M_PI), true, false, "radians (PCL's BoundaryEstimation: pi/2)"};
+constexpr ParameterSpec kLinkDistanceFactor{
+    "link distance factor", "rim points closer than this are chained into one loop", "",
+    "HoleBoundaryEstimation::setLinkDistanceFactor", 4.5f, 1.f, kUnbounded, false, false,
+    "sampling pitches (a rim of random samples, thinned to the points an empty disc touches, "
+    "has steps of up to 4)"};
+constexpr ParameterSpec kMinLoopPoints{
+    "min loop points", "shorter loops are ignored as noise", "",
+    "HoleBoundaryEstimation::setMinLoopPoints", 6.f, 3.f, kUnbounded, false, false, "points"};
+constexpr ParameterSpec kMinHoleDiameter{
+    "min hole diameter", "min hole size in cloud units instead of pitches", "",
+    "HoleBoundaryEstimation::setMinHoleDiameter", 0.f, 0.f, kUnbounded, false, false,
+    "cloud units; 0 = from min hole size"};
+
 /** \brief Every numeric parameter, in the order the docs list them. */
 constexpr const ParameterSpec *kNumeric[] = {&kRadius,           &kRadiusShrinkFactor, &kSigmaD,
                                              &kSigmaN,           &kSigmaR,             &kSpacingFactor,
                                              &kTerminationRatio, &kMaxPasses,          &kMaxBoundaryGrowth,
-                                             &kMinHoleSize,      &kMaxHoleDiameter};
+                                             &kMinHoleSize,      &kMaxHoleDiameter,    &kKSearch,
+                                             &kAngleThreshold,   &kLinkDistanceFactor, &kMinLoopPoints,
+                                             &kMinHoleDiameter};
 
 // Each: name, meaning, option, what the option sets, setter, default.
 
@@ -141,6 +167,28 @@ rangeText (const ParameterSpec &spec)
   if (spec.infinity_allowed)
     text << ", or infinity";
   return text.str ();
+}
+/** \brief A parameter's value, to be checked against its spec. */
+struct CheckedValue
+{
+  const ParameterSpec &spec;
+  float value;
+};
+
+/** \brief "name = value (range; unit)" for the first value its spec refuses,
+  * empty when every one is accepted: what a checkParameters () prints. */
+inline std::string
+firstRefused (std::initializer_list<CheckedValue> values)
+{
+  for (const auto &checked : values)
+    if (!checked.spec.accepts (checked.value))
+    {
+      std::ostringstream text;
+      text << checked.spec.name << " = " << checked.value << " (" << rangeText (checked.spec) << "; "
+           << checked.spec.unit << ")";
+      return text.str ();
+    }
+  return "";
 }
 }  // namespace parameters
 

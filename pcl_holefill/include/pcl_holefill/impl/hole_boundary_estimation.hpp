@@ -36,7 +36,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   flags_.assign (input_ ? input_->size () : 0, 0);
   if (!input_ || input_->empty ())
   {
-    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] The input cloud is empty: no loop.\n", caller);
+    PCL_WARN ("[pcl_holefill::%s::%s] The input cloud is empty: no loop.\n", getClassName ().c_str (), caller);
     return false;
   }
   if (!checkParameters (caller) || !selectUsablePoints (caller))
@@ -56,18 +56,19 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
 template <typename PointT> bool
 HoleBoundaryEstimation<PointT>::checkParameters (const char *caller) const
 {
-  if (k_ < 3 || k_ > 64 || !(angle_threshold_ >= M_PI / 2.0 && angle_threshold_ < 2.f * M_PI) ||
-      !(link_factor_ > 0.f && std::isfinite (link_factor_)) || min_loop_points_ < 3 ||
-      !parameters::kMaxHoleDiameter.accepts (max_hole_diameter_) ||
-      !parameters::kMinHoleSize.accepts (min_hole_pitches_) ||
-      !(min_hole_diameter_ >= 0.f && std::isfinite (min_hole_diameter_)))
+  namespace P = parameters;
+  const std::string refused = P::firstRefused ({
+      {P::kKSearch, static_cast<float> (k_)},
+      {P::kAngleThreshold, angle_threshold_},
+      {P::kLinkDistanceFactor, link_factor_},
+      {P::kMinLoopPoints, static_cast<float> (min_loop_points_)},
+      {P::kMaxHoleDiameter, max_hole_diameter_},
+      {P::kMinHoleSize, min_hole_pitches_},
+      {P::kMinHoleDiameter, min_hole_diameter_},
+  });
+  if (!refused.empty ())
   {
-    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] Invalid parameters: k = %d (3..64), angle "
-               "threshold = %g (pi/2..2pi), link distance factor = %g (> 0), min loop points = %d (>= 3), "
-               "max hole diameter = %g (>= 0), min hole size = %g pitches (2..100), min hole diameter = %g "
-               "(>= 0).\n",
-               caller, k_, angle_threshold_, link_factor_, min_loop_points_, max_hole_diameter_,
-               min_hole_pitches_, min_hole_diameter_);
+    PCL_ERROR ("[pcl_holefill::%s::%s] Invalid parameter: %s.\n", getClassName ().c_str (), caller, refused.c_str ());
     return false;
   }
   return true;
@@ -80,8 +81,8 @@ HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
     return false;
   if (!detail::indicesInRange (*indices_, input_->size ()))
   {
-    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::%s] The indices set with setIndices() address points "
-               "outside the cloud (%zu points): no loop.\n", caller, input_->size ());
+    PCL_ERROR ("[pcl_holefill::%s::%s] The indices set with setIndices() address points "
+               "outside the cloud (%zu points): no loop.\n", getClassName ().c_str (), caller, input_->size ());
     deinitCompute ();
     return false;
   }
@@ -89,12 +90,12 @@ HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
   const std::size_t skipped = detail::keepOrientedPoints (*input_, *indices_, *usable_);
   deinitCompute ();
   if (skipped > 0)
-    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Skipped %zu of %zu points with non-finite "
-              "coordinates or a missing normal.\n", caller, skipped, indices_->size ());
+    PCL_WARN ("[pcl_holefill::%s::%s] Skipped %zu of %zu points with non-finite "
+              "coordinates or a missing normal.\n", getClassName ().c_str (), caller, skipped, indices_->size ());
   if (usable_->size () < static_cast<std::size_t> (k_) + 1)
   {
-    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Only %zu usable points (need more than k = %d): "
-              "no loop.\n", caller, usable_->size (), k_);
+    PCL_WARN ("[pcl_holefill::%s::%s] Only %zu usable points (need more than k = %d): "
+              "no loop.\n", getClassName ().c_str (), caller, usable_->size (), k_);
     return false;
   }
   return true;
@@ -128,8 +129,8 @@ HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
     ordered->push_back ((*usable_)[order[i]]);
   }
   if (duplicates > 0)
-    PCL_WARN ("[pcl_holefill::HoleBoundaryEstimation::%s] Ignored %zu points that repeat the position of "
-              "another.\n", caller, duplicates);
+    PCL_WARN ("[pcl_holefill::%s::%s] Ignored %zu points that repeat the position of "
+              "another.\n", getClassName ().c_str (), caller, duplicates);
   usable_ = ordered;
   return cell;
 }
@@ -413,14 +414,14 @@ HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature
     return false;
   if (feature_indices.size () < 2)
   {
-    PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::refineFeaturePoints] Need at least 2 feature "
-               "points, got %zu.\n", feature_indices.size ());
+    PCL_ERROR ("[pcl_holefill::%s::refineFeaturePoints] Need at least 2 feature "
+               "points, got %zu.\n", getClassName ().c_str (), feature_indices.size ());
     return false;
   }
   for (const auto i : feature_indices)
     if (i < 0 || static_cast<std::size_t> (i) >= input_->size () || local_of_[i] < 0)
     {
-      PCL_ERROR ("[pcl_holefill::HoleBoundaryEstimation::refineFeaturePoints] Feature point %d is out of "
+      PCL_ERROR ("[pcl_holefill::%s::refineFeaturePoints] Feature point %d is out of "
                  "range or not an oriented point.\n", static_cast<int> (i));
       return false;
     }

@@ -279,7 +279,7 @@ template <typename PointT> bool
 HoleFilling<PointT>::checkParameters () const
 {
   namespace P = parameters;
-  const std::pair<const ParameterSpec &, float> checked[] = {
+  const std::string refused = P::firstRefused ({
       {P::kRadius, radius_},
       {P::kRadiusShrinkFactor, shrink_},
       {P::kSigmaD, sigma_d_},
@@ -291,14 +291,13 @@ HoleFilling<PointT>::checkParameters () const
       {P::kMaxBoundaryGrowth, max_growth_},
       {P::kMaxHoleDiameter, max_hole_diameter_},
       {P::kMinHoleSize, min_hole_pitches_},
-  };
-  for (const auto &[spec, value] : checked)
-    if (!spec.accepts (value))
-    {
-      PCL_ERROR ("[pcl_holefill::%s::checkParameters] Invalid parameter: %s = %g (%s; %s). Nothing filtered.\n",
-                 getClassName ().c_str (), spec.name, value, P::rangeText (spec).c_str (), spec.unit);
-      return false;
-    }
+  });
+  if (!refused.empty ())
+  {
+    PCL_ERROR ("[pcl_holefill::%s::checkParameters] Invalid parameter: %s. Nothing filtered.\n",
+               getClassName ().c_str (), refused.c_str ());
+    return false;
+  }
   return true;
 }
 

@@ -62,8 +62,7 @@ PointGrid
 gridOf (const std::vector<Eigen::Vector3f> &points)
 {
   PointGrid grid (PointGrid::suggestCellSize (points, 8));
-  for (std::size_t i = 0; i < points.size (); ++i)
-    grid.insert (points[i], static_cast<int> (i));
+  grid.build (points);
   return grid;
 }
 

@@ -157,13 +157,11 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
   if (positions.empty () || !(link_distance > 0.f))
     return loops;
   PointGrid grid (link_distance);
+  grid.build (positions);
   std::vector<Eigen::Vector3f> tangents (positions.size ());
+  // Walking along n x g keeps the missing surface on the right-hand side.
   for (std::size_t i = 0; i < positions.size (); ++i)
-  {
-    grid.insert (positions[i], static_cast<int> (i));
-    // Walking along n x g keeps the missing surface on the right-hand side.
     tangents[i] = normals[i].cross (gap_directions[i]).normalized ();
-  }
   std::vector<char> visited (positions.size (), 0);
   for (const auto &set : linkedSets (grid, positions, link_distance))
   {

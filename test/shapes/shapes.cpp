@@ -362,8 +362,7 @@ evaluateFill (const Shape &shape, const CutCloud &cut, const std::vector<Ball> &
     return q;
   }
   detail::PointGrid grid (detail::PointGrid::suggestCellSize (positions, 8));
-  for (std::size_t i = 0; i < positions.size (); ++i)
-    grid.insert (positions[i], static_cast<int> (i));
+  grid.build (positions);
   std::vector<detail::PointGrid::Neighbour> nearest;
   std::size_t covered = 0;
   for (const auto &p : cut.removed)

@@ -67,20 +67,7 @@ detectionTable (std::size_t points, int threads)
 void
 fillTable (int threads)
 {
-  struct Case
-  {
-    const char *name;
-    shapes::Shape shape;
-    std::size_t points;
-    shapes::Ball hole;
-    float sigma_n;
-  };
-  const Case cases[] = {
-      {"cube corner (sharp)", shapes::cube (), 9192, {{1, 1, 1}, 0.2}, 0.1f},
-      {"pyramid apex (sharp)", shapes::openPyramid (), 4000, {{0.5, 0.5, 1}, 0.25}, 0.1f},
-      {"dihedral edge (sharp)", shapes::dihedral (), 4000, {{0.5, 0.5, 1}, 0.2}, 0.1f},
-      {"sphere cap (smooth)", shapes::sphere (), 4320, {{0.5, 0.5, 1}, 0.35}, pcl_holefill::kSup},
-  };
+  const auto cases = shapes::paperCases ();
   std::printf ("\n== Filling one hole per shape, %d threads\n", threads);
   std::printf ("%-24s %8s %8s %10s %10s %12s %12s\n", "case", "points", "filled", "fill s", "normals s",
                "fill/normals", "max error");
@@ -93,7 +80,7 @@ fillTable (int threads)
         [&] {
           pcl_holefill::HoleFilling<pcl::PointNormal> filler;
           filler.setInputCloud (cloud);
-          filler.setSigmaN (c.sigma_n);
+          filler.setSigmaN (c.smooth ? pcl_holefill::kSup : 0.1f);
           filler.setNumberOfThreads (threads);
           filler.filter (output);
         },

@@ -193,12 +193,9 @@ main (int argc, char **argv)
   }
   const std::filesystem::path out_dir = argv[1];
   std::filesystem::create_directories (out_dir / "results");
-  std::vector<Case> cases{
-      {"cube (corner)", shapes::cube (), 9192, {{1, 1, 1}, 0.2}, false, 0.0046},
-      {"pyramid (apex)", shapes::openPyramid (), 4000, {{0.5, 0.5, 1}, 0.25}, false, 0.0114},
-      {"dihedral (edge)", shapes::dihedral (), 4000, {{0.5, 0.5, 1}, 0.2}, false, 0.0034},
-      {"sphere (cap)", shapes::sphere (), 4320, {{0.5, 0.5, 1}, 0.35}, true, 0.0},
-  };
+  std::vector<Case> cases;
+  for (const auto &c : shapes::paperCases ())
+    cases.push_back ({c.name, c.shape, c.points, c.hole, c.smooth, c.paper_max_error});
   if (argc == 3)
   {
     shapes::Shape fandisk;

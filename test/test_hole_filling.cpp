@@ -74,33 +74,37 @@ expectCoveredAndClean (const Outcome &o, const std::string &what)
 // reaches plus half of it (the paper's own figures are 2 to 10 times higher).
 TEST (HoleFilling, CubeCornerIsSharpWithinThePapersError)
 {
-  const auto o = fill (shapes::cube (), 9192, {{{1, 1, 1}, 0.2}}, sharp);
+  const auto c = shapes::paperCase ("cube (corner)");
+  const auto o = fill (c.shape, c.points, {c.hole}, sharp);
   EXPECT_LE (o.quality.max_error, 0.0005);  // reached: 0 (the paper's Table 2: 0.0046)
   EXPECT_GT (o.quality.filled, 30u);
-  expectCoveredAndClean (o, "cube corner");
+  expectCoveredAndClean (o, "cube (corner)");
 }
 
 TEST (HoleFilling, PyramidApexIsSharpWithinThePapersError)
 {
-  const auto o = fill (shapes::openPyramid (), 4000, {{{0.5, 0.5, 1}, 0.25}}, sharp);
+  const auto c = shapes::paperCase ("pyramid (apex)");
+  const auto o = fill (c.shape, c.points, {c.hole}, sharp);
   EXPECT_LE (o.quality.max_error, 0.0021);  // reached: 0.0014 (the paper's Table 2: 0.0114)
-  expectCoveredAndClean (o, "pyramid apex");
+  expectCoveredAndClean (o, "pyramid (apex)");
 }
 
 TEST (HoleFilling, DihedralEdgeIsSharpWithinThePapersError)
 {
-  const auto o = fill (shapes::dihedral (), 4000, {{{0.5, 0.5, 1}, 0.2}}, sharp);
+  const auto c = shapes::paperCase ("dihedral (edge)");
+  const auto o = fill (c.shape, c.points, {c.hole}, sharp);
   EXPECT_LE (o.quality.max_error, 0.0021);  // reached: 0.0014 (the paper's Table 2: 0.0034)
-  expectCoveredAndClean (o, "dihedral edge");
+  expectCoveredAndClean (o, "dihedral (edge)");
 }
 
 TEST (HoleFilling, SphereCapIsRoundWithoutTheNormalConstraint)
 {
-  const auto o = fill (shapes::sphere (), 4320, {{{0.5, 0.5, 1.0}, 0.35}}, smooth);
+  const auto c = shapes::paperCase ("sphere (cap)");
+  const auto o = fill (c.shape, c.points, {c.hole}, smooth);
   ASSERT_GT (o.quality.filled, 100u);
   EXPECT_LT (o.quality.mean_error, 0.01 * 0.5);  // 1 % of the radius
   EXPECT_LT (o.quality.max_error, 0.02);
-  expectCoveredAndClean (o, "sphere cap");
+  expectCoveredAndClean (o, "sphere (cap)");
 }
 
 TEST (HoleFilling, ALargeCapStaysOnTheSphere)
@@ -382,9 +386,9 @@ TEST (CombinationConstraint, WithoutItTheFacesOvershootTheEdges)
     std::size_t points;
     Ball ball;
   };
-  const Case cases[] = {{"cube corner", shapes::cube (), 9192, {{1, 1, 1}, 0.2}},
+  const Case cases[] = {{"cube (corner)", shapes::cube (), 9192, {{1, 1, 1}, 0.2}},
                         {"cube edge", shapes::cube (), 9192, {{1, 1, 0.5}, 0.2}},
-                        {"pyramid apex", shapes::openPyramid (), 4000, {{0.5, 0.5, 1}, 0.25}}};
+                        {"pyramid (apex)", shapes::openPyramid (), 4000, {{0.5, 0.5, 1}, 0.25}}};
   for (const auto &c : cases)
   {
     double error[2];

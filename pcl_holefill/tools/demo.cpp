@@ -23,14 +23,6 @@ namespace
 const Eigen::Vector3f kInputColour (0.78f, 0.78f, 0.8f);
 const Eigen::Vector3f kFilledColour (1.f, 0.55f, 0.1f);
 
-struct DemoCase
-{
-  pcl_holefill::shapes::Shape shape;
-  std::size_t points;
-  pcl_holefill::shapes::Ball hole;
-  Eigen::Vector3f view;  //!< looking at the hole
-};
-
 std::vector<Splat>
 splats (const pcl_holefill::shapes::Cloud &cloud, std::size_t first_filled)
 {
@@ -53,19 +45,20 @@ runDemo (const std::string &directory, bool quiet)
     std::fprintf (stderr, "pcl_holefill: cannot create '%s': %s\n", directory.c_str (), ec.message ().c_str ());
     return 1;
   }
-  const std::vector<DemoCase> cases{
-      {shapes::cube (), 9192, {{1, 1, 1}, 0.2}, Eigen::Vector3f (-1.f, -0.8f, -0.7f)},
-      {shapes::sphere (), 4320, {{0.5, 0.5, 1.0}, 0.35}, Eigen::Vector3f (-0.5f, -1.f, -0.9f)},
+  // Two of the paper's Table 2 cases, each seen from where it shows its hole.
+  const std::pair<shapes::PaperCase, Eigen::Vector3f> cases[] = {
+      {shapes::paperCase ("cube (corner)"), Eigen::Vector3f (-1.f, -0.8f, -0.7f)},
+      {shapes::paperCase ("sphere (cap)"), Eigen::Vector3f (-0.5f, -1.f, -0.9f)},
   };
   const std::pair<const char *, float> settings[] = {{"sharp", 0.1f}, {"smooth", pcl_holefill::kSup}};
   std::printf ("%-7s %-7s %8s %8s %10s %10s %9s %6s %8s\n", "model", "setting", "removed", "filled", "max error",
                "mean error", "covered", "closed", "seconds");
   std::vector<Image> rows;
-  for (const auto &c : cases)
+  for (const auto &[c, view] : cases)
   {
     const auto cut = shapes::cutHoles (c.shape.sample (c.points), {c.hole});
     const double spacing = shapes::meanSpacing (cut.kept);
-    std::vector<Image> row{renderSplats (splats (cut.kept, cut.kept.size ()), c.view, 320)};
+    std::vector<Image> row{renderSplats (splats (cut.kept, cut.kept.size ()), view, 320)};
     for (const auto &[name, sigma_n] : settings)
     {
       pcl_holefill::HoleFilling<pcl::PointNormal> filler;
@@ -95,7 +88,7 @@ runDemo (const std::string &directory, bool quiet)
         std::fprintf (stderr, "pcl_holefill: cannot write '%s'\n", ply.c_str ());
         return 1;
       }
-      row.push_back (renderSplats (splats (output, cut.kept.size ()), c.view, 320));
+      row.push_back (renderSplats (splats (output, cut.kept.size ()), view, 320));
     }
     rows.push_back (sideBySide (row));
   }

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -275,6 +276,27 @@ flatPatch ()
   s.name = "flat";
   s.faces = {quad (V (0, 0, 0.5), V (1, 0, 0.5), V (1, 1, 0.5), V (0, 1, 0.5))};
   return s;
+}
+
+std::vector<PaperCase>
+paperCases ()
+{
+  using V = Eigen::Vector3d;
+  return {
+      {"cube (corner)", cube (), 9192, {V (1, 1, 1), 0.2}, false, 0.0046},
+      {"pyramid (apex)", openPyramid (), 4000, {V (0.5, 0.5, 1), 0.25}, false, 0.0114},
+      {"dihedral (edge)", dihedral (), 4000, {V (0.5, 0.5, 1), 0.2}, false, 0.0034},
+      {"sphere (cap)", sphere (), 4320, {V (0.5, 0.5, 1), 0.35}, true, 0.0},
+  };
+}
+
+PaperCase
+paperCase (const std::string &name)
+{
+  for (auto &c : paperCases ())
+    if (name == c.name)
+      return c;
+  throw std::invalid_argument ("no paper case named '" + name + "'");
 }
 
 CutCloud

@@ -76,6 +76,29 @@ struct CutCloud
   Cloud removed;
 };
 
+/** \brief One of the paper's Table 2 cases: a shape, how many samples, the
+  * hole cut at a sharp feature (or the sphere's smooth cap), and the max
+  * error the paper reports for its method (0: none). */
+struct PaperCase
+{
+  const char *name;
+  Shape shape;
+  std::size_t points;
+  Ball hole;
+  bool smooth;              //!< judged with sigma_n = kSup (round), not 0.1 (sharp)
+  double paper_max_error;
+};
+
+/** \brief The paper's Table 2 cases, in its order: cube corner, pyramid apex,
+  * dihedral edge, sphere cap. The one table of the tests, the bench and the
+  * command's -demo. */
+std::vector<PaperCase>
+paperCases ();
+
+/** \brief The case of paperCases () named \a name ("cube (corner)", ...). */
+PaperCase
+paperCase (const std::string &name);
+
 /** \brief Removes every sample inside any of \a balls. */
 CutCloud
 cutHoles (const Cloud &cloud, const std::vector<Ball> &balls);

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_holefill/detail/point_grid.h>
+#include <pcl_holefill/detail/first_touch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -152,40 +153,75 @@ PointGrid::rehash (std::size_t capacity)
 }
 
 void
-PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids)
+PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids, int threads)
 {
   reset (cell_size_);
-  std::vector<int> cell_of (points.size (), -1);
-  std::vector<std::size_t> counts;
-  for (std::size_t i = 0; i < points.size (); ++i)
+  const auto n = static_cast<std::ptrdiff_t> (points.size ());
+  // The cell of every point, in parallel (kNoCell for non-finite points) ...
+  constexpr CellKey kNoCell = ~CellKey (0);
+  std::vector<CellKey> keys;
+  reserveTouched (keys, points.size (), threads);
+  keys.resize (points.size ());
+  int lo[3] = {kCoordinateLimit, kCoordinateLimit, kCoordinateLimit};
+  int hi[3] = {-kCoordinateLimit, -kCoordinateLimit, -kCoordinateLimit};
+#pragma omp parallel for num_threads(std::max (1, threads)) schedule(static) \
+    reduction(min : lo[:3]) reduction(max : hi[:3])
+  for (std::ptrdiff_t i = 0; i < n; ++i)
   {
+    keys[i] = kNoCell;
     if (!points[i].allFinite ())
       continue;
     int c[3];
     cellCoordinates (points[i], c[0], c[1], c[2]);
     for (int d = 0; d < 3; ++d)
     {
-      min_cell_[d] = std::min (min_cell_[d], c[d]);
-      max_cell_[d] = std::max (max_cell_[d], c[d]);
+      lo[d] = std::min (lo[d], c[d]);
+      hi[d] = std::max (hi[d], c[d]);
     }
-    cell_of[i] = findOrAddCell (keyOf (c[0], c[1], c[2]));
-    if (static_cast<std::size_t> (cell_of[i]) >= counts.size ())
-      counts.resize (cell_of[i] + 1, 0);
-    ++counts[cell_of[i]];
+    keys[i] = keyOf (c[0], c[1], c[2]);
   }
+  if (lo[0] <= hi[0])  // some point is finite
+    for (int d = 0; d < 3; ++d)
+    {
+      min_cell_[d] = lo[d];
+      max_cell_[d] = hi[d];
+    }
+  // ... then cells numbered in order of first appearance, as one insert()
+  // after another would (consecutive points often share a cell: the last
+  // one is tried before the table) ...
+  std::vector<int> cell_of;
+  reserveTouched (cell_of, points.size (), threads);
+  cell_of.resize (points.size (), -1);
+  std::vector<std::uint32_t> counts;
+  CellKey last_key = kNoCell;
+  int last_cell = -1;
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+  {
+    if (keys[i] == kNoCell)
+      continue;
+    if (keys[i] != last_key)
+    {
+      last_key = keys[i];
+      last_cell = findOrAddCell (last_key);
+      if (static_cast<std::size_t> (last_cell) >= counts.size ())
+        counts.resize (last_cell + 1, 0);
+    }
+    cell_of[i] = last_cell;
+    ++counts[last_cell];
+  }
+  // ... and the points stored cell after cell, in their order within a cell.
   counts.resize (cell_keys_.size (), 0);
   bulk_begin_.assign (cell_keys_.size () + 1, 0);
   for (std::size_t c = 0; c < counts.size (); ++c)
-    bulk_begin_[c + 1] = bulk_begin_[c] + static_cast<std::uint32_t> (counts[c]);
+    bulk_begin_[c + 1] = bulk_begin_[c] + counts[c];
+  reserveTouched (bulk_, bulk_begin_.back (), threads);
   bulk_.resize (bulk_begin_.back ());
   std::vector<std::uint32_t> next (bulk_begin_.begin (), bulk_begin_.end () - 1);
-  for (std::size_t i = 0; i < points.size (); ++i)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
     if (cell_of[i] >= 0)
-    {
       bulk_[next[cell_of[i]]++] = {points[i].x (), points[i].y (), points[i].z (),
                                    ids ? (*ids)[i] : static_cast<int> (i)};
-      ++size_;
-    }
+  size_ = bulk_.size ();
 }
 
 PointGrid::CellSpan
@@ -466,7 +502,9 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
     return v;
   };
   PointGrid frame (cell_size);
-  std::vector<std::pair<std::uint64_t, int>> keyed (points.size ());
+  std::vector<std::pair<std::uint64_t, int>> keyed;
+  reserveTouched (keyed, points.size (), threads);
+  keyed.resize (points.size ());
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (points.size ());
   // Within a cell, equal positions end up next to each other (see below).
 #pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
@@ -506,8 +544,11 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
     std::sort (keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], before);
   for (int r = 1; r < runs; ++r)
     std::inplace_merge (keyed.begin (), keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], before);
-  std::vector<int> order (points.size ());
-  for (std::size_t i = 0; i < keyed.size (); ++i)
+  std::vector<int> order;
+  reserveTouched (order, points.size (), threads);
+  order.resize (points.size ());
+#pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
     order[i] = keyed[i].second;
   return order;
 }

@@ -39,6 +39,13 @@ public:
   float
   getCellSize () const { return grid_.cellSize (); }
 
+  /** \brief Threads that build the grid in setInputCloud (); 1 (default),
+    * 0 = all cores. The grid, and every answer, is the same for any count. */
+  void
+  setNumberOfThreads (unsigned int threads) { threads_ = threads; }
+  unsigned int
+  getNumberOfThreads () const { return threads_; }
+
   void
   setInputCloud (const PointCloudConstPtr &cloud,
                  const pcl::IndicesConstPtr &indices = pcl::IndicesConstPtr ()) override;
@@ -67,6 +74,7 @@ private:
 
   int neighbours_per_cell_block_;
   float requested_cell_size_ = 0.f;
+  unsigned int threads_ = 1;
   std::size_t indexed_points_ = 0;
   detail::PointGrid grid_;
 };

@@ -41,9 +41,10 @@ public:
 
   /** \brief Replaces the content by \a points (ids 0..n-1, or \a ids when
     * given), counting per cell first so that every cell is allocated once at
-    * its exact size: the memory of a bulk load is the points' and no more. */
+    * its exact size: the memory of a bulk load is the points' and no more.
+    * The same grid for any number of \a threads. */
   void
-  build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids = nullptr);
+  build (const std::vector<Eigen::Vector3f> &points, const std::vector<int> *ids = nullptr, int threads = 1);
 
   /** \brief Adds one point with the caller's id. Non-finite points are ignored. */
   void

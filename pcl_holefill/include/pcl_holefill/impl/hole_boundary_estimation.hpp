@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/detail/boundary_point_test.h>
+#include <pcl_holefill/detail/first_touch.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/detail/loop_tracing.h>
 #include <pcl_holefill/detail/point_validity.h>
@@ -48,7 +49,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   else
   {
     grid_.reset (cell);
-    grid_.build (positions_);
+    grid_.build (positions_, nullptr, detail::resolveThreadCount (threads_));
   }
   return true;
 }
@@ -107,17 +108,20 @@ HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
   // Work in spatial (Morton) order: the per-point pass then reads memory in
   // order. The unordered copy lives only in this function, so that it is
   // gone before the grid is built (the peak memory of a large cloud).
+  const int threads = detail::resolveThreadCount (threads_);
+  const auto count = static_cast<std::ptrdiff_t> (usable_->size ());
   std::vector<Eigen::Vector3f> unordered;
-  unordered.reserve (usable_->size ());
-  for (const auto i : *usable_)
-    unordered.push_back ((*input_)[i].getVector3fMap ());
+  detail::reserveTouched (unordered, usable_->size (), threads);
+  unordered.resize (usable_->size ());  // Eigen leaves them unset: no pass over the memory
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::ptrdiff_t i = 0; i < count; ++i)
+    unordered[i] = (*input_)[(*usable_)[i]].getVector3fMap ();
   const float cell = detail::PointGrid::suggestCellSize (unordered, k_);
-  const std::vector<int> order =
-      detail::PointGrid::spatialOrder (unordered, cell, static_cast<int> (detail::resolveThreadCount (threads_)));
+  const std::vector<int> order = detail::PointGrid::spatialOrder (unordered, cell, threads);
   // Repeated positions would fill the k nearest with copies of one
   // neighbour: only the first of each is used (spatialOrder puts them together).
   pcl::IndicesPtr ordered (new pcl::Indices);
-  ordered->reserve (usable_->size ());
+  detail::reserveTouched (*ordered, usable_->size (), threads);
   std::size_t duplicates = 0;
   for (std::size_t i = 0; i < order.size (); ++i)
   {

@@ -10,6 +10,7 @@
 #include <pcl_holefill/hole_filling.h>
 #include <pcl_holefill/impl/bilateral_preprocessor.hpp>
 #include <pcl_holefill/detail/elastic_sampler.hpp>
+#include <pcl_holefill/detail/first_touch.h>
 #include <pcl_holefill/impl/hole_boundary_estimation.hpp>
 #include <pcl_holefill/impl/voxel_hash_search.hpp>
 #include <pcl_holefill/detail/loop_tracing.h>
@@ -454,7 +455,11 @@ HoleFilling<PointT>::applyFilter (PointCloud &output)
   // the two never take memory at the same time.
   SearchPtr search = search_;
   if (!search)
-    search.reset (new VoxelHashSearch<PointT> (16));
+  {
+    auto own = pcl::make_shared<VoxelHashSearch<PointT>> (16);
+    own->setNumberOfThreads (threads_);
+    search = own;
+  }
   std::vector<BoundaryLoop> holes;
   if (!collectHoles (working, search, holes))
   {
@@ -484,7 +489,7 @@ HoleFilling<PointT>::writeOutput (const PointCloud &points, const std::vector<Po
     total += f.size ();
   const auto header = output.header;
   output.clear ();
-  output.reserve (total);
+  detail::reserveTouched (output.points, total, detail::resolveThreadCount (threads_));
   output.insert (output.end (), points.begin (), points.end ());  // every point, bit for bit
   for (const auto &f : fills)
     output.insert (output.end (), f.begin (), f.end ());

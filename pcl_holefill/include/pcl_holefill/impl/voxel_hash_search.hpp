@@ -5,6 +5,8 @@
 #pragma once
 
 #include <pcl_holefill/voxel_hash_search.h>
+#include <pcl_holefill/detail/first_touch.h>
+#include <pcl_holefill/detail/thread_count.h>
 
 #include <pcl/common/point_tests.h>
 
@@ -29,9 +31,10 @@ VoxelHashSearch<PointT>::setInputCloud (const PointCloudConstPtr &cloud,
     grid_.reset (1.f);
     return;
   }
+  const int threads = detail::resolveThreadCount (threads_);
   std::vector<Eigen::Vector3f> positions;
   const std::size_t count = indices ? indices->size () : cloud->size ();
-  positions.reserve (count);
+  detail::reserveTouched (positions, count, threads);
   for (std::size_t i = 0; i < count; ++i)
     positions.push_back ((*cloud)[indices ? (*indices)[i] : i].getVector3fMap ());
   float cell = requested_cell_size_;
@@ -42,10 +45,10 @@ VoxelHashSearch<PointT>::setInputCloud (const PointCloudConstPtr &cloud,
   if (indices)
   {
     const std::vector<int> ids (indices->begin (), indices->end ());
-    grid_.build (positions, &ids);
+    grid_.build (positions, &ids, threads);
   }
   else
-    grid_.build (positions);
+    grid_.build (positions, nullptr, threads);
   indexed_points_ = cloud->size ();
 }
 

@@ -109,6 +109,16 @@ public:
   float
   getConstraintTolerance () const { return tolerance_; }
 
+  /** \brief Growth of the constraint's tolerance with the distance from the
+    * reference point (no unit, >= 0; default 0): the error of its normal, as
+    * an angle. A tangent plane tilted by e puts a sample at distance d on the
+    * true surface d sin(e) above or below it; estimated normals near a crease
+    * tilt by much more than one point's noise. */
+  void
+  setConstraintSlope (float slope) { slope_ = slope; }
+  float
+  getConstraintSlope () const { return slope_; }
+
   /** \brief How far a reference point may lie above or below its
     * neighbours (their weighted mean height over its tangent plane) and
     * still count as flat, not convex or concave (cloud units, >= 0; default
@@ -241,6 +251,7 @@ private:
   NormalPropagation<PointT> propagation_;
   float equilibrium_distance_ = 0.f;
   float tolerance_ = 0.f;
+  float slope_ = 0.f;
   float sign_tolerance_ = 0.f;
   float constraint_radius_ = 0.f;
   int threads_ = 1;

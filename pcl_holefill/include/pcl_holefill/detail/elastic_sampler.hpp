@@ -116,14 +116,15 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
   pcl::Indices found;
   std::vector<float> sqr_distances;
   propagation_.getSearchMethod ()->radiusSearch (query, constraintReach (), found, sqr_distances);
-  for (const auto i : found)
+  for (std::size_t k = 0; k < found.size (); ++k)
   {
-    const int sign = curvatureSign (i);
+    const int sign = curvatureSign (found[k]);
     if (sign == 0)
       continue;
-    const PointT &q = (*input_)[i];
+    const PointT &q = (*input_)[found[k]];
     const float height = (position - q.getVector3fMap ()).dot (q.getNormalVector3fMap ().normalized ());
-    if ((sign > 0 && height > tolerance_) || (sign < 0 && height < -tolerance_))
+    const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distances[k]);
+    if ((sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance))
       return true;
   }
   return false;

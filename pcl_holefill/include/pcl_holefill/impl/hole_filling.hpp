@@ -74,6 +74,10 @@ constexpr float kToleranceInNoiseSigmas = 2.5f;
 // errors 1.81 at 2.5, 1.19 at 1.25, 0.98 at 0.75, but coverage >= 95 % at
 // 0.5 % noise in 101 of 108 cases at 1.25, 95 at 0.75).
 constexpr float kSignToleranceInNoiseSigmas = 1.25f;
+// Growth of the constraint's tolerance with distance, per unit of the rim's
+// normal spread: pyramid apex, random samples, PCA normals: 87 % -> 98 %
+// covered, max error 0.0077 -> 0.0097 (the corpus's clean-normal cases unchanged).
+constexpr float kSlopePerNormalSpread = 1.f;
 // Above this rim noise (in mean spacings) the first-order extension is off,
 // unless the rim's normals are good enough to extrapolate (RimStatistics::normalsAreLinear).
 constexpr float kFirstOrderMaxNoiseInSpacings = 0.1f;
@@ -630,6 +634,13 @@ HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, cons
       std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));
   sampler.setCurvatureSignTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kSignToleranceInNoiseSigmas * report.noise));
+  // A reference point's tangent plane is only as good as its normal. PCA
+  // normals near a crease are tilted towards the other face, and a sample on
+  // the true face, d away, then lies d sin(tilt) past that plane: the
+  // tolerance grows with d by the rim's normal spread (an angle, ~0 for exact
+  // normals on flat faces). Not on noisy rims, where the spread is the noise
+  // of the normals and the noise tolerance above already applies.
+  sampler.setConstraintSlope (report.first_order ? detail::kSlopePerNormalSpread * report.normal_spread : 0.f);
   sampler.setCombinationConstraint (combination_constraint_);
   sampler.setConstraintRadius (scale.constraint_radius);
   sampler.setBoundingBall (scale.centre, scale.bound);

@@ -4,6 +4,10 @@
  */
 #pragma once
 
+#include <pcl/point_cloud.h>
+
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <vector>
 
@@ -34,6 +38,24 @@ reserveTouched (std::vector<T, Allocator> &v, std::size_t capacity, int threads)
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::ptrdiff_t offset = 0; offset < bytes; offset += kPage)
     room[offset] = 0;
+}
+
+/** \brief The positions of the points of \a cloud at \a indices (of every
+  * point when \a indices is null), gathered by \a threads threads into a
+  * buffer touched as reserveTouched does: the one copy of a large cloud's
+  * positions that detection and the search make before ordering or gridding. */
+template <typename PointT>
+std::vector<Eigen::Vector3f>
+gatherPositions (const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indices, int threads)
+{
+  const std::size_t count = indices ? indices->size () : cloud.size ();
+  std::vector<Eigen::Vector3f> positions;
+  reserveTouched (positions, count, threads);
+  positions.resize (count);  // Eigen leaves them unset: no pass over the memory
+#pragma omp parallel for num_threads(threads < 1 ? 1 : threads) schedule(static)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (count); ++i)
+    positions[i] = cloud[indices ? (*indices)[i] : i].getVector3fMap ();
+  return positions;
 }
 
 }  // namespace pcl_holefill::detail

@@ -109,13 +109,7 @@ HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
   // order. The unordered copy lives only in this function, so that it is
   // gone before the grid is built (the peak memory of a large cloud).
   const int threads = detail::resolveThreadCount (threads_);
-  const auto count = static_cast<std::ptrdiff_t> (usable_->size ());
-  std::vector<Eigen::Vector3f> unordered;
-  detail::reserveTouched (unordered, usable_->size (), threads);
-  unordered.resize (usable_->size ());  // Eigen leaves them unset: no pass over the memory
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::ptrdiff_t i = 0; i < count; ++i)
-    unordered[i] = (*input_)[(*usable_)[i]].getVector3fMap ();
+  const std::vector<Eigen::Vector3f> unordered = detail::gatherPositions (*input_, usable_.get (), threads);
   const float cell = detail::PointGrid::suggestCellSize (unordered, k_);
   const std::vector<int> order = detail::PointGrid::spatialOrder (unordered, cell, threads);
   // Repeated positions would fill the k nearest with copies of one

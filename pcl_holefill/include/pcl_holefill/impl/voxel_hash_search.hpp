@@ -32,11 +32,7 @@ VoxelHashSearch<PointT>::setInputCloud (const PointCloudConstPtr &cloud,
     return;
   }
   const int threads = detail::resolveThreadCount (threads_);
-  std::vector<Eigen::Vector3f> positions;
-  const std::size_t count = indices ? indices->size () : cloud->size ();
-  detail::reserveTouched (positions, count, threads);
-  for (std::size_t i = 0; i < count; ++i)
-    positions.push_back ((*cloud)[indices ? (*indices)[i] : i].getVector3fMap ());
+  const std::vector<Eigen::Vector3f> positions = detail::gatherPositions (*cloud, indices.get (), threads);
   float cell = requested_cell_size_;
   if (!(cell > 0.f))
     cell = detail::PointGrid::suggestCellSize (positions, neighbours_per_cell_block_);

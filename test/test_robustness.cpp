@@ -257,7 +257,8 @@ TEST (EstimatedNormals, RandomSamplesFoundAndCovered)
     const double p = corpus::pitch (c.shape, c.points);
     EXPECT_EQ (o.detection.found, o.detection.cut) << c.shape.name;
     EXPECT_EQ (o.detection.false_holes, 0u) << c.shape.name;
-    EXPECT_GE (o.fill.coverage, 0.95) << c.shape.name;      // reached: 96.8 % to 99.4 %
+    // reached: 97.8 % (L-block) to 100 %; 96.8 % before openings across edges were taken up again
+    EXPECT_GE (o.fill.coverage, 0.97) << c.shape.name;
     EXPECT_LE (o.fill.max_error, 2.5 * p) << c.shape.name;  // reached: 1.95 pitches (cube, rounded PCA normals)
   }
 }

@@ -186,14 +186,18 @@ def test_normals_are_estimated_when_not_given(corner):
     # Estimated normals face out of the cube, every one.
     n = len(kept)
     assert (np.einsum("ij,ij->i", res.normals[:n], kept - 0.5) > 0).all()
-    # PCA normals on random samples round the corner off, and the fronts stop
-    # short of it (reached: 88 % of the removed samples within 1.5 pitches,
-    # max error 0.046): the report must then say the hole is open.
-    covered = (gap(removed, res.points) <= 1.5 * pitch(6.0)).mean()
-    assert covered >= 0.85
-    assert cube_distance(res.points[res.filled]).max() < 0.06
-    if covered < 0.99:
-        assert not res.reports[0]["closed"] and res.reports[0]["open_diameter"] > 0
+    # PCA normals on random samples round the edges off; the fronts stop short
+    # of them and the openings left along the edges are taken up again
+    # (reached: 98.8 % of the removed samples within 1.5 pitches, no removed
+    # sample farther than 1.73 pitches from the output, max error 0.018).
+    gaps = gap(removed, res.points) / pitch(6.0)
+    assert (gaps <= 1.5).mean() >= 0.97
+    assert cube_distance(res.points[res.filled]).max() < 0.025
+    # A hole reported closed has no empty part wider than about 2 spacings.
+    if res.reports[0]["closed"]:
+        assert gaps.max() <= 2.0
+    else:
+        assert res.reports[0]["open_diameter"] > 0
 
 
 def test_extra_columns_come_back_for_the_filled_points(corner):

@@ -179,6 +179,32 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   EXPECT_NEAR (detail::ElasticSampler<pcl::PointNormal>::equilibriumDistanceFromSigmaR (0.1f), 0.01f * std::log (1e4f), 1e-6f);
 }
 
+// The enclosure test of a closed hole's rim (ElasticSampler::setRim).
+TEST (RimGap, InsideARimItIsUnderHalfATurnAndPastItMore)
+{
+  std::vector<Eigen::Vector3f> rim;
+  for (int k = 0; k < 64; ++k)
+  {
+    const float a = static_cast<float> (2.0 * M_PI * k / 64);
+    rim.emplace_back (std::cos (a), std::sin (a), 0.f);
+  }
+  const Eigen::Vector3f up = Eigen::Vector3f::UnitZ ();
+  const float sector = static_cast<float> (2.0 * M_PI / 128);
+  // From the centre: the gap between two rim points (1/64 turn), within a sector.
+  EXPECT_NEAR (detail::rimGapAround (Eigen::Vector3f::Zero (), up, rim), 2.0 * M_PI / 64, 2.f * sector);
+  // Near the rim, inside: under half a turn; outside: over it, growing with the distance.
+  const float inside = detail::rimGapAround ({0.95f, 0.f, 0.f}, up, rim);
+  const float near_outside = detail::rimGapAround ({1.05f, 0.f, 0.f}, up, rim);
+  const float far_outside = detail::rimGapAround ({2.f, 0.f, 0.f}, up, rim);
+  EXPECT_LT (inside, M_PI);
+  EXPECT_GT (near_outside, M_PI);
+  EXPECT_NEAR (far_outside, 2.0 * M_PI - 2.0 * std::asin (0.5), 2.f * sector);  // the disc seen from 2 radii
+  // Seen along a tilted view the rim is an ellipse: the centre stays enclosed.
+  EXPECT_LT (detail::rimGapAround (Eigen::Vector3f::Zero (), Eigen::Vector3f (1.f, 0.f, 1.f).normalized (), rim), M_PI);
+  // Nothing to see: the whole turn.
+  EXPECT_FLOAT_EQ (detail::rimGapAround (Eigen::Vector3f::Zero (), up, {}), static_cast<float> (2.0 * M_PI));
+}
+
 TEST (BilateralPreprocessor, DenoisesAPlaneAndKeepsTheRidge)
 {
   Cloud clean = shapes::dihedral ().sample (6000);

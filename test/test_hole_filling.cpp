@@ -342,8 +342,8 @@ TEST (HonestReport, AHoleStoppedEarlyIsReportedOpenWithWhatIsLeft)
 }
 
 // The outer border of a flat patch, given as a hole, has nothing to close:
-// its front grows outwards as a flat sheet. It is stopped at the region its
-// rim can span, and the report says so.
+// its front grows outwards as a flat sheet. The border does not enclose it:
+// it is stopped next to the rim, and the report says so.
 TEST (HonestReport, AFrontGrowingAwayIsStoppedAndReported)
 {
   const Cloud patch = shapes::flatPatch ().sample (3000);
@@ -361,16 +361,21 @@ TEST (HonestReport, AFrontGrowingAwayIsStoppedAndReported)
   ASSERT_EQ (filler.getReports ().size (), 1u);
   const HoleReport &r = filler.getReports ()[0];
   EXPECT_FALSE (r.closed);
-  EXPECT_GT (r.outside_bound, 0u);
+  EXPECT_GT (r.beyond_rim, 0u);
   EXPECT_GT (r.open_points, 0u);
   // Nothing farther from the rim than the rim's own diameter.
+  float farthest = 0.f;
   for (std::size_t i = patch.size (); i < output.size (); ++i)
   {
     float nearest = std::numeric_limits<float>::max ();
     for (const auto j : loops[0].indices)
       nearest = std::min (nearest, (output[i].getVector3fMap () - patch[j].getVector3fMap ()).norm ());
-    EXPECT_LE (nearest, loops[0].diameter);
+    farthest = std::max (farthest, nearest);
   }
+  // The bounding ball alone let the sheet grow to the rim's diameter (1.4);
+  // the rim's enclosure stops it within 0.097 (5 d_eq), where a long straight
+  // rim still fills 200 degrees of the view along the normal.
+  EXPECT_LE (farthest, 0.1f * loops[0].diameter);
 }
 
 // The paper's Fig. 7: without the combination constraint (sec. 4.4) the

@@ -225,6 +225,10 @@ private:
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report, int threads) const;
 
+  /** Points evenly along the rim (at most detail::kRimOutlinePoints): what new points must lie within. */
+  static std::vector<Eigen::Vector3f>
+  rimOutline (const Surroundings &surroundings);
+
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool
   measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,

@@ -38,6 +38,7 @@ struct HoleReport
   float open_diameter = 0.f;           //!< largest distance between two of them: the size of what is left
   unsigned resumed = 0;                //!< times the fill was taken up again from what was left open
   std::size_t outside_bound = 0;       //!< samples stopped at the region the rim can span (a runaway front)
+  std::size_t beyond_rim = 0;          //!< samples dropped because the hole's rim does not enclose them
   float diameter = 0.f;                //!< of the boundary loop
   float spacing = 0.f;                 //!< h: mean nearest-neighbour distance of the rim points
   float pitch = 0.f;                   //!< sampling pitch around the rim, sqrt(area per point)

@@ -155,6 +155,25 @@ public:
     bound_radius_ = radius;
   }
 
+  /** \brief The rim of a closed hole, which new points must lie within (an
+    * empty rim, the default, switches the test off). A point is beyond the
+    * rim when, seen along the hole's \a axis, the rim leaves a sector wider
+    * than \a max_gap_along_axis empty around it (rimGapAround), and, seen
+    * along its own normal, one wider than \a max_gap_along_normal (radians).
+    * Either view alone misjudges some holes: along the axis, the faces of a
+    * thin part's end run parallel to it and lie on the rim's outline; along
+    * its own normal, the rim of a steep apex lies all on one side. A few
+    * dozen points along the loop are enough. */
+  void
+  setRim (std::vector<Eigen::Vector3f> rim, const Eigen::Vector3f &axis, float max_gap_along_axis,
+          float max_gap_along_normal)
+  {
+    rim_ = std::move (rim);
+    rim_axis_ = axis.normalized ();
+    max_rim_gap_along_axis_ = max_gap_along_axis;
+    max_rim_gap_along_normal_ = max_gap_along_normal;
+  }
+
   /** \brief Threads for the candidates of one pass (>= 1, default 1). The
     * candidates are placed side by side and kept in order: the result is the
     * same for any number. */
@@ -183,7 +202,8 @@ private:
     kTooClose,
     kOvershoot,
     kUnsupported,
-    kOutsideBound
+    kOutsideBound,
+    kBeyondRim
   };
 
   /** What one pass shares between its steps. */
@@ -258,6 +278,9 @@ private:
   bool combination_constraint_ = true;
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
   float bound_radius_ = 0.f;
+  std::vector<Eigen::Vector3f> rim_;
+  Eigen::Vector3f rim_axis_ = Eigen::Vector3f::UnitZ ();
+  float max_rim_gap_along_axis_ = 0.f, max_rim_gap_along_normal_ = 0.f;
   mutable std::vector<signed char> curvature_signs_;  //!< 2 = not computed yet
 };
 

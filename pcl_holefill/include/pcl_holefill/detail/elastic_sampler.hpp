@@ -146,6 +146,9 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
                                                   sqr_distances, 1);
   if (!found.empty ())
     return Verdict::kTooClose;
+  if (!rim_.empty () && rimGapAround (position, rim_axis_, rim_) > max_rim_gap_along_axis_ &&
+      rimGapAround (position, normal, rim_) > max_rim_gap_along_normal_)
+    return Verdict::kBeyondRim;
   if (combination_constraint_ && breaksCombinationConstraint (position))
     return Verdict::kOvershoot;
   return Verdict::kKept;
@@ -161,6 +164,7 @@ ElasticSampler<PointT>::count (Verdict verdict, ContractionStats &stats)
   case Verdict::kOvershoot: ++stats.rejected_by_constraint; break;
   case Verdict::kUnsupported: ++stats.unsupported; break;
   case Verdict::kOutsideBound: ++stats.outside_bound; break;
+  case Verdict::kBeyondRim: ++stats.beyond_rim; break;
   case Verdict::kKept: break;
   }
 }

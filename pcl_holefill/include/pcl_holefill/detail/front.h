@@ -39,6 +39,7 @@ struct ContractionStats
   std::size_t rejected_by_constraint = 0;  //!< overshooting candidates (section 4.4)
   std::size_t unsupported = 0;             //!< no weighted neighbour
   std::size_t outside_bound = 0;           //!< outside the hole's bounding ball
+  std::size_t beyond_rim = 0;              //!< not enclosed by the hole's rim
   std::size_t samples = 0;                 //!< points of the new boundary B
 };
 
@@ -55,5 +56,14 @@ frontSize (const Front &front)
 /** \brief Total polyline length over all chains. */
 float
 frontLength (const Front &front);
+
+/** \brief The widest sector, seen from \a position in the plane normal to
+  * \a normal, that holds none of the \a rim points (radians, 0..2 pi;
+  * 2 pi when the rim is empty or on top of \a position). A point of the
+  * surface a closed rim encloses sees the rim all around it (under pi, up to
+  * pi on a straight stretch of it); a point past the rim sees it on one side
+  * only. Resolution: kRimSectors sectors of the circle. */
+float
+rimGapAround (const Eigen::Vector3f &position, const Eigen::Vector3f &normal, const std::vector<Eigen::Vector3f> &rim);
 
 }  // namespace pcl_holefill::detail

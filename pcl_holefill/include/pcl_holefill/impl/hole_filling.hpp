@@ -58,6 +58,19 @@ constexpr int kResumeRounds = 2;
 // with exact normals) is taken up; normals that turn further are rough or
 // misoriented, and along them a front runs past the edge.
 constexpr float kResumeMinNormalCosine = 0.4f;
+// New points must lie within the rim of a closed hole (ElasticSampler::setRim):
+// a point is beyond it when the rim leaves a sector empty around it wider
+// than pi seen along the hole's axis (the mean of the rim's normals) and
+// wider than 200 degrees seen along its own normal. Inside, the widest is
+// under pi (pi on a straight stretch of rim); filled points reached 152
+// degrees along the axis (a steep apex) and 281 along their normal (same).
+constexpr float kMaxRimGapAlongAxis = static_cast<float> (M_PI);
+constexpr float kMaxRimGapAlongNormal = static_cast<float> (200.0 * M_PI / 180.0);
+// A hole's axis is taken when the rim's normals sum to at least this share
+// of their count (they cancel out on a rim around a thin plate's middle).
+constexpr float kMinRimAxisStrength = 0.05f;
+// ... tested against this many points taken evenly along the rim.
+constexpr std::size_t kRimOutlinePoints = 96;
 // Passes beyond four times the passes that close a hole, when the bound is automatic.
 constexpr int kAutoPassesSlack = 20;
 // Neighbours from which the sampling pitch around a rim point is measured.
@@ -605,6 +618,17 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
   surroundings.search->setInputCloud (surroundings.cloud);
 }
 
+template <typename PointT> std::vector<Eigen::Vector3f>
+HoleFilling<PointT>::rimOutline (const Surroundings &surroundings)
+{
+  const std::size_t n = surroundings.rim.size ();
+  const std::size_t step = std::max<std::size_t> (1, (n + detail::kRimOutlinePoints - 1) / detail::kRimOutlinePoints);
+  std::vector<Eigen::Vector3f> outline;
+  for (std::size_t k = 0; k < n; k += step)
+    outline.push_back ((*surroundings.cloud)[surroundings.rim[k]].getVector3fMap ());
+  return outline;
+}
+
 template <typename PointT> void
 HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                                    const HoleScale &scale, HoleReport &report) const
@@ -735,11 +759,12 @@ HoleFilling<PointT>::contractUntilTermination (detail::ElasticSampler<PointT> &s
     }
     ++report.passes;
     report.outside_bound += stats.outside_bound;
+    report.beyond_rim += stats.beyond_rim;
     PCL_DEBUG ("[pcl_holefill::%s::contractUntilTermination] pass %d: |B'| %zu, kept %zu, repelled %zu, on "
-               "surface %zu, overshoot %zu, unsupported %zu, outside %zu, |B| %zu\n",
+               "surface %zu, overshoot %zu, unsupported %zu, outside %zu, beyond rim %zu, |B| %zu\n",
                getClassName ().c_str (), pass, stats.former_boundary_points, stats.kept_control_points,
                stats.repelled, stats.too_close, stats.rejected_by_constraint, stats.unsupported,
-               stats.outside_bound, stats.samples);
+               stats.outside_bound, stats.beyond_rim, stats.samples);
     // B joins the surface: other fields from the nearest known point.
     std::vector<detail::FrontVertex> joining;
     for (const auto &chain : next)
@@ -913,9 +938,10 @@ HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale
               getClassName ().c_str (), loop.diameter, report.outside_bound);
   if (!report.closed)
     PCL_WARN ("[pcl_holefill::%s::fillHole] A hole of diameter %g is not closed after %u passes (%s): an opening "
-              "of about %g is left (%zu boundary points).\n",
+              "of about %g is left (%zu boundary points)%s.\n",
               getClassName ().c_str (), loop.diameter, report.passes, toString (report.termination),
-              report.open_diameter, report.open_points);
+              report.open_diameter, report.open_points,
+              report.beyond_rim > 0 ? "; samples beyond its rim were dropped (is the loop a border?)" : "");
 }
 
 template <typename PointT> void
@@ -950,6 +976,11 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
   sampler.setNumberOfThreads (threads);
+  Eigen::Vector3f axis = Eigen::Vector3f::Zero ();
+  for (const auto i : surroundings.rim)
+    axis += (*surroundings.cloud)[i].getNormalVector3fMap ();
+  if (loop.closed && axis.norm () > detail::kMinRimAxisStrength * static_cast<float> (surroundings.rim.size ()))
+    sampler.setRim (rimOutline (surroundings), axis, detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal);
   surroundings.threads = threads;
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_holefill/bilateral_preprocessor.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/local_surface.h>
 #include <pcl_holefill/detail/normal_propagation.h>

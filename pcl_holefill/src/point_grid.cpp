@@ -160,8 +160,7 @@ PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<
   // The cell of every point, in parallel (kNoCell for non-finite points) ...
   constexpr CellKey kNoCell = ~CellKey (0);
   std::vector<CellKey> keys;
-  reserveTouched (keys, points.size (), threads);
-  keys.resize (points.size ());
+  resizeTouched (keys, points.size (), threads);
   int lo[3] = {kCoordinateLimit, kCoordinateLimit, kCoordinateLimit};
   int hi[3] = {-kCoordinateLimit, -kCoordinateLimit, -kCoordinateLimit};
 #pragma omp parallel for num_threads(std::max (1, threads)) schedule(static) \
@@ -190,8 +189,7 @@ PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<
   // after another would (consecutive points often share a cell: the last
   // one is tried before the table) ...
   std::vector<int> cell_of;
-  reserveTouched (cell_of, points.size (), threads);
-  cell_of.resize (points.size (), -1);
+  resizeTouched (cell_of, points.size (), threads, -1);
   std::vector<std::uint32_t> counts;
   CellKey last_key = kNoCell;
   int last_cell = -1;
@@ -214,8 +212,7 @@ PointGrid::build (const std::vector<Eigen::Vector3f> &points, const std::vector<
   bulk_begin_.assign (cell_keys_.size () + 1, 0);
   for (std::size_t c = 0; c < counts.size (); ++c)
     bulk_begin_[c + 1] = bulk_begin_[c] + counts[c];
-  reserveTouched (bulk_, bulk_begin_.back (), threads);
-  bulk_.resize (bulk_begin_.back ());
+  resizeTouched (bulk_, bulk_begin_.back (), threads);
   std::vector<std::uint32_t> next (bulk_begin_.begin (), bulk_begin_.end () - 1);
   for (std::ptrdiff_t i = 0; i < n; ++i)
     if (cell_of[i] >= 0)
@@ -503,8 +500,7 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
   };
   PointGrid frame (cell_size);
   std::vector<std::pair<std::uint64_t, int>> keyed;
-  reserveTouched (keyed, points.size (), threads);
-  keyed.resize (points.size ());
+  resizeTouched (keyed, points.size (), threads);
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (points.size ());
   // Within a cell, equal positions end up next to each other (see below).
 #pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
@@ -545,8 +541,7 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
   for (int r = 1; r < runs; ++r)
     std::inplace_merge (keyed.begin (), keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], before);
   std::vector<int> order;
-  reserveTouched (order, points.size (), threads);
-  order.resize (points.size ());
+  resizeTouched (order, points.size (), threads);
 #pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
   for (std::ptrdiff_t i = 0; i < n; ++i)
     order[i] = keyed[i].second;

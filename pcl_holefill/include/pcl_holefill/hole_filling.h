@@ -225,9 +225,11 @@ private:
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report, int threads) const;
 
-  /** Points evenly along the rim (at most detail::kRimOutlinePoints): what new points must lie within. */
-  static std::vector<Eigen::Vector3f>
-  rimOutline (const Surroundings &surroundings);
+  /** Has \a sampler keep new points within the hole's closed rim: points
+    * evenly along it (at most detail::kRimOutlinePoints), seen along the
+    * mean of its normals (no test where they cancel out). */
+  static void
+  encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings);
 
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool

@@ -102,4 +102,15 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
                   float diameter, float test_radius);
 
+/** \brief The widest sector, seen from \a position in the plane normal to
+  * \a normal, that holds none of the \a rim points (radians, 0..2 pi;
+  * 2 pi when the rim is empty or on top of \a position). A point of the
+  * surface a closed rim encloses sees the rim all around it (under pi, up to
+  * pi on a straight stretch of it); a point past the rim sees it on one side
+  * only. Resolution: 128 sectors of the circle, equal in diamond angle (the
+  * enclosure test of ElasticSampler::setRim; no unfolding: the rim lies far
+  * from the point, across any edge). */
+float
+rimGapAround (const Eigen::Vector3f &position, const Eigen::Vector3f &normal, const std::vector<Eigen::Vector3f> &rim);
+
 }  // namespace pcl_holefill::detail

@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/normal_propagation.hpp>
 

@@ -40,6 +40,26 @@ reserveTouched (std::vector<T, Allocator> &v, std::size_t capacity, int threads)
     room[offset] = 0;
 }
 
+/** \brief reserveTouched, then resize to \a size (new elements
+  * default-inserted: left unset where the type has no initialiser, as
+  * Eigen's vectors). */
+template <typename T, typename Allocator>
+void
+resizeTouched (std::vector<T, Allocator> &v, std::size_t size, int threads)
+{
+  reserveTouched (v, size, threads);
+  v.resize (size);
+}
+
+/** \brief The same, new elements set to \a value. */
+template <typename T, typename Allocator>
+void
+resizeTouched (std::vector<T, Allocator> &v, std::size_t size, int threads, const T &value)
+{
+  reserveTouched (v, size, threads);
+  v.resize (size, value);
+}
+
 /** \brief The positions of the points of \a cloud at \a indices (of every
   * point when \a indices is null), gathered by \a threads threads into a
   * buffer touched as reserveTouched does: the one copy of a large cloud's
@@ -50,8 +70,7 @@ gatherPositions (const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indic
 {
   const std::size_t count = indices ? indices->size () : cloud.size ();
   std::vector<Eigen::Vector3f> positions;
-  reserveTouched (positions, count, threads);
-  positions.resize (count);  // Eigen leaves them unset: no pass over the memory
+  resizeTouched (positions, count, threads);  // Eigen leaves them unset: no pass over the memory
 #pragma omp parallel for num_threads(threads < 1 ? 1 : threads) schedule(static)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (count); ++i)
     positions[i] = cloud[indices ? (*indices)[i] : i].getVector3fMap ();

@@ -57,13 +57,4 @@ frontSize (const Front &front)
 float
 frontLength (const Front &front);
 
-/** \brief The widest sector, seen from \a position in the plane normal to
-  * \a normal, that holds none of the \a rim points (radians, 0..2 pi;
-  * 2 pi when the rim is empty or on top of \a position). A point of the
-  * surface a closed rim encloses sees the rim all around it (under pi, up to
-  * pi on a straight stretch of it); a point past the rim sees it on one side
-  * only. Resolution: kRimSectors sectors of the circle. */
-float
-rimGapAround (const Eigen::Vector3f &position, const Eigen::Vector3f &normal, const std::vector<Eigen::Vector3f> &rim);
-
 }  // namespace pcl_holefill::detail

@@ -618,15 +618,19 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
   surroundings.search->setInputCloud (surroundings.cloud);
 }
 
-template <typename PointT> std::vector<Eigen::Vector3f>
-HoleFilling<PointT>::rimOutline (const Surroundings &surroundings)
+template <typename PointT> void
+HoleFilling<PointT>::encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings)
 {
   const std::size_t n = surroundings.rim.size ();
   const std::size_t step = std::max<std::size_t> (1, (n + detail::kRimOutlinePoints - 1) / detail::kRimOutlinePoints);
   std::vector<Eigen::Vector3f> outline;
   for (std::size_t k = 0; k < n; k += step)
     outline.push_back ((*surroundings.cloud)[surroundings.rim[k]].getVector3fMap ());
-  return outline;
+  Eigen::Vector3f axis = Eigen::Vector3f::Zero ();
+  for (const auto i : surroundings.rim)
+    axis += (*surroundings.cloud)[i].getNormalVector3fMap ();
+  if (axis.norm () > detail::kMinRimAxisStrength * static_cast<float> (n))
+    sampler.setRim (std::move (outline), axis, detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal);
 }
 
 template <typename PointT> void
@@ -976,11 +980,8 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
   sampler.setNumberOfThreads (threads);
-  Eigen::Vector3f axis = Eigen::Vector3f::Zero ();
-  for (const auto i : surroundings.rim)
-    axis += (*surroundings.cloud)[i].getNormalVector3fMap ();
-  if (loop.closed && axis.norm () > detail::kMinRimAxisStrength * static_cast<float> (surroundings.rim.size ()))
-    sampler.setRim (rimOutline (surroundings), axis, detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal);
+  if (loop.closed)  // an open border encloses nothing
+    encloseByRim (sampler, surroundings);
   surroundings.threads = threads;
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).

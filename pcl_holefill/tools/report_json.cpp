@@ -70,7 +70,7 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"spacing\": " << r.spacing << ", \"equilibrium_distance\": " << r.equilibrium_distance
         << ", \"open_points\": " << r.open_points << ", \"open_diameter\": " << r.open_diameter
         << ", \"outside_bound\": " << r.outside_bound << ", \"beyond_rim\": " << r.beyond_rim
-        << ", \"resumed\": " << r.resumed << ", \"centre\": " << coordinates (r.centre, origin)
+        << ", \"resumed\": " << r.resumed << ", \"refitted_normals\": " << r.refitted_normals << ", \"centre\": " << coordinates (r.centre, origin)
         << ", \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
         << ", \"first_order\": " << (r.first_order ? "true" : "false") << ", \"sigma_n\": ";

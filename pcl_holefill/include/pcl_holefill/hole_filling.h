@@ -225,6 +225,16 @@ private:
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report, int threads) const;
 
+  /** Refits the normals of the surroundings' input points that PCA blended
+    * across a crease (detail::refitCreaseNormal), with the rim's \a noise;
+    * returns how many. Only the fill's copy changes. */
+  std::size_t
+  refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const;
+
+  /** Does a rim point have a neighbour within \a reach whose normal is ~30 degrees off its own? */
+  static bool
+  rimSeesCrease (const Surroundings &surroundings, float reach);
+
   /** Has \a sampler keep new points within the hole's closed rim: points
     * evenly along it (at most detail::kRimOutlinePoints), seen along the
     * mean of its normals (no test where they cancel out). */

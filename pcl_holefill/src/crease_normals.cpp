@@ -1,0 +1,84 @@
+/*
+ * pcl_holefill: shape controllable hole filling for oriented point clouds.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_holefill/detail/crease_normals.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_holefill::detail
+{
+namespace
+{
+// A refit needs the best plane to hold this many neighbours more than the
+// point's own plane ...
+constexpr int kMinGain = 3;
+// ... and this many times as many: a plane that wins by a few points on a
+// curved patch is a tilt the curvature allows, not a crease.
+constexpr float kMinGainRatio = 1.2f;
+// The plane's neighbours must span a surface, not lie along a line (the
+// ratio of the middle to the largest eigenvalue of their scatter).
+constexpr float kMinSpread = 1e-3f;
+
+int
+countOnPlane (const Eigen::Vector3f &point, const Eigen::Vector3f &normal, const Eigen::Vector3f *positions,
+              int count, float tolerance)
+{
+  int on = 0;
+  for (int k = 0; k < count; ++k)
+    on += std::abs ((positions[k] - point).dot (normal)) <= tolerance ? 1 : 0;
+  return on;
+}
+}  // namespace
+
+bool
+refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
+                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, int count,
+                   float tolerance, Eigen::Vector3f &refitted)
+{
+  const bool near_crease = std::any_of (unit_normals, unit_normals + count, [&] (const Eigen::Vector3f &n) {
+    return (n - unit_normal).norm () > kCreaseNormalDifference;
+  });
+  if (!near_crease)
+    return false;
+  const int own = countOnPlane (point, unit_normal, positions, count, tolerance);
+  int best = own;
+  Eigen::Vector3f best_normal = unit_normal;
+  for (int k = 0; k < count; ++k)
+  {
+    const int on = countOnPlane (point, unit_normals[k], positions, count, tolerance);
+    if (on > best)
+    {
+      best = on;
+      best_normal = unit_normals[k];
+    }
+  }
+  if (best < own + kMinGain || static_cast<float> (best) < kMinGainRatio * static_cast<float> (own))
+    return false;
+  // PCA over the best plane's neighbours: the face's normal, not the
+  // neighbour's estimate of it.
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
+  int on = 0;
+  for (int k = 0; k < count; ++k)
+    if (std::abs ((positions[k] - point).dot (best_normal)) <= tolerance)
+    {
+      mean += positions[k];
+      ++on;
+    }
+  mean /= static_cast<float> (on);
+  Eigen::Matrix3f scatter = Eigen::Matrix3f::Zero ();
+  for (int k = 0; k < count; ++k)
+    if (std::abs ((positions[k] - point).dot (best_normal)) <= tolerance)
+      scatter += (positions[k] - mean) * (positions[k] - mean).transpose ();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver (scatter);
+  refitted = solver.eigenvalues () (1) > kMinSpread * solver.eigenvalues () (2) ? solver.eigenvectors ().col (0)
+                                                                              : best_normal;
+  if (refitted.dot (unit_normal) < 0.f)
+    refitted = -refitted;
+  return true;
+}
+
+}  // namespace pcl_holefill::detail

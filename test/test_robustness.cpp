@@ -339,6 +339,28 @@ TEST (EstimatedNormals, EdgesComeBackSharp)
   }
 }
 
+// The refit reads every estimated normal before it writes one: the output
+// is the same for any number of threads.
+TEST (EstimatedNormals, RefittedNormalsGiveTheSameOutputOnOneOrTwoThreads)
+{
+  const auto c = makeCase (pcl_holefill::shapes::cube (), Sampling::kRandom, 0.0, true, true);
+  const Cloud::Ptr kept (new Cloud (corpus::build (c).kept));
+  Cloud outputs[2];
+  std::size_t refitted = 0;
+  for (int run = 0; run < 2; ++run)
+  {
+    pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+    filler.setInputCloud (kept);
+    filler.setNumberOfThreads (run + 1);
+    filler.filter (outputs[run]);
+    for (const auto &r : filler.getReports ())
+      refitted += run == 0 ? r.refitted_normals : 0;
+  }
+  EXPECT_GT (refitted, 0u);  // reached: 265 over the cube's three holes
+  ASSERT_EQ (outputs[1].size (), outputs[0].size ());
+  EXPECT_EQ (std::memcmp (outputs[1].data (), outputs[0].data (), sizeof (pcl::PointNormal) * outputs[0].size ()), 0);
+}
+
 // Noise of 0.3 % of the diagonal and normals estimated from the noisy points:
 // the automatic sigma_n widens g2 to the spread of the rim's normals, so eq.
 // (1) keeps enough neighbours to average the noise out. With the former fixed

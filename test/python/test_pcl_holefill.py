@@ -212,6 +212,21 @@ def test_corner_is_filled_sharp_from_estimated_normals(seed):
         assert res.reports[0]["open_diameter"] > 0
 
 
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_sphere_cap_keeps_its_curvature_from_estimated_normals(seed):
+    # A rim point's PCA normal is fitted to neighbours on one side of it and
+    # leans away from the hole; the fill continued that lean and the cap came
+    # out 0.014-0.017 too high (1.1-1.4 pitches). The normals near the rim
+    # are refitted by a quadric. Reached: max error under 0.0001, 99.8-99.9 %
+    # of the removed samples within 1.5 pitches.
+    points, normals = sphere_samples(SAMPLES, seed)
+    kept, _, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.2)])
+    res = pcl_holefill.fill(kept, quiet=True)
+    assert res.reports[0]["refitted_normals"] > 0
+    assert sphere_distance(res.points[res.filled]).max() < 0.002
+    assert (gap(removed, res.points) <= 1.5 * pitch(np.pi)).mean() >= 0.99
+
+
 def test_extra_columns_come_back_for_the_filled_points(corner):
     kept, kept_normals, _ = corner
     colour = np.tile(np.array([[7, 8, 9]], dtype=np.uint8), (len(kept), 1))

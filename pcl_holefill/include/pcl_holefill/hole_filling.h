@@ -231,6 +231,12 @@ private:
   std::size_t
   refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const;
 
+  /** Refits by a quadric (detail::quadricNormal) the normals of the input
+    * points near the rim that lie on one smooth piece; returns how many
+    * changed. Only the fill's copy changes. */
+  std::size_t
+  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale) const;
+
   /** Does a rim point have a neighbour within \a reach whose normal is ~30 degrees off its own? */
   static bool
   rimSeesCrease (const Surroundings &surroundings, float reach);

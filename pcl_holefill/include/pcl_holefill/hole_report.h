@@ -39,8 +39,8 @@ struct HoleReport
   unsigned resumed = 0;                //!< times the fill was taken up again from what was left open
   std::size_t outside_bound = 0;       //!< samples stopped at the region the rim can span (a runaway front)
   std::size_t beyond_rim = 0;          //!< samples dropped because the hole's rim does not enclose them
-  std::size_t refitted_normals = 0;    //!< input normals near the hole that were blended across a crease, refitted
-                                       //!< to their face for the fill (the output keeps the input's)
+  std::size_t refitted_normals = 0;    //!< input normals near the hole refitted for the fill (blended across a
+                                       //!< crease, or tilted by the hole); the output keeps the input's
   float diameter = 0.f;                //!< of the boundary loop
   float spacing = 0.f;                 //!< h: mean nearest-neighbour distance of the rim points
   float pitch = 0.f;                   //!< sampling pitch around the rim, sqrt(area per point)

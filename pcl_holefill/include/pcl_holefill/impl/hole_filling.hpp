@@ -5,7 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/bilateral_preprocessor.h>
-#include <pcl_holefill/detail/crease_normals.h>
+#include <pcl_holefill/detail/normal_refit.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
@@ -79,13 +79,25 @@ constexpr int kAutoPassesSlack = 20;
 // in random samples of a cube with PCA normals, 24 cases: >= 99 % covered
 // 5 -> 23, sum of max errors 0.82 -> 0.06 at 6; 18 and 0.40 at 4.
 constexpr float kCreaseReachInSpacings = 6.f;
-// ... on rims whose noise allowance (the tolerance) is under this share of
-// the pitch. A point within the tolerance of an edge lies on both faces'
-// planes, and a wider band of such points near the edges of a thin part
-// took the faces' normals and ran fronts off its end (fin, scan lines, 0.1 %
-// noise: max error 0.008 -> 0.047 at 0.5 pitch). Noisier rims keep their
-// normals; the constraint's noise tolerance covers their blending.
-constexpr float kCreaseMaxToleranceInPitches = 0.25f;
+// Normals near a hole are refitted only on rims whose noise allowance (the
+// constraint's tolerance) is under this share of the pitch. A point within
+// the tolerance of an edge lies on both faces' planes, and a wider band of
+// such points near the edges of a thin part took the faces' normals and ran
+// fronts off its end (fin, scan lines, 0.1 % noise: max error 0.008 -> 0.047
+// at 0.5 pitch). Noisier rims keep their normals; the constraint's noise
+// tolerance covers their blending.
+constexpr float kRefitMaxToleranceInPitches = 0.25f;
+// The one-sided neighbourhoods of a rim reach this far from it (pitches):
+// the normals within are refitted by a quadric (detail::quadricNormal).
+// A sphere cap 32 pitches across, random samples, PCA normals: max error
+// 0.014 -> 0.0006 refitting within ~1.6 pitches, 0 within ~4.
+constexpr float kRimBiasReachInPitches = 3.f;
+// ... on rims whose noise is under this (mean spacings; exact positions
+// measure 0-0.005 h, the facets of the corpus's meshes). A quadric fitted
+// to noisy neighbours tilts more than the bias it removes: at 0.1 h, a
+// random cube's corner at 0.1 % noise went 0.056 -> 0.086 and voxel-grid
+// cubes at 0.1 % (measured 0.1 h) 0.002 -> 0.009.
+constexpr float kRimBiasMaxNoiseInSpacings = 0.02f;
 // Neighbours from which the sampling pitch around a rim point is measured.
 constexpr int kPitchNeighbours = 16;
 // More neighbouring normals than this pointing opposite ways: not oriented.
@@ -118,7 +130,7 @@ constexpr float kFirstOrderMaxNormalNonlinearity = 0.015f;
 // ... and so are normals within kSmoothRimMaxNonlinearity on a smooth rim,
 // one where at most kSmoothRimMaxCreaseShare of the rim points see a crease
 // (a neighbour's normal more than kCreaseNormalDifference, ~30 degrees,
-// away; see crease_normals.h). Near a crease, estimated normals are blended across it, and
+// away; see normal_refit.h). Near a crease, estimated normals are blended across it, and
 // extrapolating that blend bends the patch (cube edges 0.013 -> 0.023).
 constexpr float kSmoothRimMaxNonlinearity = 0.05f;
 constexpr float kSmoothRimMaxCreaseShare = 0.02f;
@@ -305,6 +317,23 @@ measureRimStatistics (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<
   statistics.nonlinearity = median (residual);
   statistics.crease_share = seen ? static_cast<float> (creased) / seen : 0.f;
   return statistics;
+}
+
+/** Sets the normal of each point of \a cloud marked in \a changed to its
+  * entry of \a normals; returns how many. The refits write only after every
+  * point has been read: the same output for any thread count. */
+template <typename PointT> std::size_t
+writeNormals (const std::vector<Eigen::Vector3f> &normals, const std::vector<char> &changed,
+              pcl::PointCloud<PointT> &cloud)
+{
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < changed.size (); ++i)
+    if (changed[i])
+    {
+      cloud[i].getNormalVector3fMap () = normals[i];
+      ++count;
+    }
+  return count;
 }
 }  // namespace detail
 
@@ -960,6 +989,47 @@ HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale
               report.beyond_rim > 0 ? "; samples beyond its rim were dropped (is the loop a border?)" : "");
 }
 
+template <typename PointT> std::size_t
+HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale) const
+{
+  PointCloud &cloud = *surroundings.cloud;
+  // The points whose neighbourhoods the hole makes one-sided: those near the rim.
+  std::vector<char> near_rim (surroundings.input_points, 0);
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : surroundings.rim)
+  {
+    surroundings.search->radiusSearch (cloud[i], detail::kRimBiasReachInPitches * scale.pitch, found, sqr_distances);
+    for (const auto q : found)
+      if (static_cast<std::size_t> (q) < surroundings.input_points)
+        near_rim[q] = 1;
+  }
+  const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
+  std::vector<Eigen::Vector3f> refitted (n);
+  std::vector<char> changed (n, 0);
+#pragma omp parallel for num_threads(surroundings.threads) schedule(dynamic, 64)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+  {
+    if (!near_rim[i] || !detail::isOrientedPoint (cloud[i]))
+      continue;
+    thread_local std::vector<Eigen::Vector3f> positions;
+    pcl::Indices nearest;
+    std::vector<float> nearest_sqr_distances;
+    surroundings.search->nearestKSearch (cloud[i], detail::kNoiseNeighbours, nearest, nearest_sqr_distances);
+    if (detail::seesCrease (cloud, static_cast<int> (i), nearest))
+      continue;  // one smooth piece only: creases are refitCreaseNormals' work
+    positions.clear ();
+    for (const auto q : nearest)
+      if (detail::isOrientedPoint (cloud[q]))
+        positions.push_back (cloud[q].getVector3fMap ());
+    const Eigen::Vector3f own = cloud[i].getNormalVector3fMap ().normalized ();
+    refitted[i] = detail::quadricNormal (cloud[i].getVector3fMap (), own, positions.data (),
+                                         static_cast<int> (positions.size ()));
+    changed[i] = refitted[i] != own ? 1 : 0;
+  }
+  return detail::writeNormals (refitted, changed, cloud);
+}
+
 template <typename PointT> bool
 HoleFilling<PointT>::rimSeesCrease (const Surroundings &surroundings, float reach)
 {
@@ -981,8 +1051,6 @@ HoleFilling<PointT>::refitCreaseNormals (Surroundings &surroundings, const HoleS
   // normals along the edge.
   const float tolerance =
       std::max (detail::kToleranceInSpacings * scale.spacing, detail::kToleranceInNoiseSigmas * noise);
-  if (tolerance > detail::kCreaseMaxToleranceInPitches * scale.pitch)
-    return 0;
   const float reach = detail::kCreaseReachInSpacings * scale.spacing;
   if (!rimSeesCrease (surroundings, reach))
     return 0;  // a smooth rim: nothing blended for the fill to continue
@@ -1011,15 +1079,7 @@ HoleFilling<PointT>::refitCreaseNormals (Surroundings &surroundings, const HoleS
                                             positions.data (), normals.data (), static_cast<int> (positions.size ()),
                                             tolerance, refitted[i]);
   }
-  // Written after every test has read the estimated normals: the same for any thread count.
-  std::size_t count = 0;
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-    if (changed[i])
-    {
-      cloud[i].getNormalVector3fMap () = refitted[i];
-      ++count;
-    }
-  return count;
+  return detail::writeNormals (refitted, changed, cloud);
 }
 
 template <typename PointT> void
@@ -1054,9 +1114,17 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   surroundings.threads = threads;
   detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
-  // 2b. Normals blended across the rim's creases, refitted to their faces
-  // (beyond the paper: PCA normals round the edges off otherwise).
-  report.refitted_normals = refitCreaseNormals (surroundings, scale, report.noise);
+  // 2b. On a clean rim, estimated normals refitted where the hole biases
+  // them (beyond the paper): blended across a crease, PCA normals round the
+  // edges off; fitted to one-sided neighbourhoods, they tilt away from the hole.
+  const float tolerance =
+      std::max (detail::kToleranceInSpacings * scale.spacing, detail::kToleranceInNoiseSigmas * report.noise);
+  if (tolerance <= detail::kRefitMaxToleranceInPitches * scale.pitch)
+  {
+    report.refitted_normals = refitCreaseNormals (surroundings, scale, report.noise);
+    if (report.noise <= detail::kRimBiasMaxNoiseInSpacings * scale.spacing)
+      report.refitted_normals += removeRimNormalBias (surroundings, scale);
+  }
   sampler.setNumberOfThreads (threads);
   if (loop.closed)  // an open border encloses nothing
     encloseByRim (sampler, surroundings);

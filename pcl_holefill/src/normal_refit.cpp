@@ -2,8 +2,9 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
-#include <pcl_holefill/detail/crease_normals.h>
+#include <pcl_holefill/detail/normal_refit.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -79,6 +80,44 @@ refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   if (refitted.dot (unit_normal) < 0.f)
     refitted = -refitted;
   return true;
+}
+
+Eigen::Vector3f
+quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *positions,
+               int count)
+{
+  constexpr int kCoefficients = 6;
+  // Twice the coefficients at least, and a well-posed fit (smallest over
+  // largest pivot of the normal equations, coordinates scaled to the reach).
+  constexpr int kMinNeighbours = 2 * kCoefficients;
+  constexpr float kMinConditioning = 1e-5f;
+  if (count < kMinNeighbours)
+    return unit_normal;
+  const Eigen::Vector3f u = unit_normal.unitOrthogonal (), v = unit_normal.cross (u);
+  float reach = 0.f;
+  for (int k = 0; k < count; ++k)
+    reach = std::max (reach, (positions[k] - point).norm ());
+  if (!(reach > 0.f))
+    return unit_normal;
+  Eigen::Matrix<float, kCoefficients, kCoefficients> lhs = Eigen::Matrix<float, kCoefficients, kCoefficients>::Zero ();
+  Eigen::Matrix<float, kCoefficients, 1> rhs = Eigen::Matrix<float, kCoefficients, 1>::Zero ();
+  for (int k = 0; k < count; ++k)
+  {
+    const Eigen::Vector3f d = positions[k] - point;
+    const float s = d.dot (u) / reach, t = d.dot (v) / reach;
+    Eigen::Matrix<float, kCoefficients, 1> row;
+    row << 1.f, s, t, s * s, s * t, t * t;
+    lhs += row * row.transpose ();
+    rhs += row * d.dot (unit_normal);
+  }
+  const Eigen::LDLT<Eigen::Matrix<float, kCoefficients, kCoefficients>> solver (lhs);
+  const auto pivots = solver.vectorD ().cwiseAbs ();
+  if (solver.info () != Eigen::Success || !(pivots.minCoeff () > kMinConditioning * pivots.maxCoeff ()))
+    return unit_normal;
+  const Eigen::Matrix<float, kCoefficients, 1> c = solver.solve (rhs);
+  // The height field's gradient at the point, per unit length.
+  const Eigen::Vector3f refitted = unit_normal - (c[1] / reach) * u - (c[2] / reach) * v;
+  return refitted.allFinite () ? refitted.normalized () : unit_normal;
 }
 
 }  // namespace pcl_holefill::detail

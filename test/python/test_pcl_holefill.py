@@ -227,6 +227,21 @@ def test_sphere_cap_keeps_its_curvature_from_estimated_normals(seed):
     assert (gap(removed, res.points) <= 1.5 * pitch(np.pi)).mean() >= 0.99
 
 
+@pytest.mark.parametrize("seed", [5, 6])
+def test_a_large_corner_hole_stays_on_the_cube(seed):
+    # A corner hole 0.6 across on 100,000 random samples: one face's front
+    # reached the corner before the others and ran on past it (seed 5: max
+    # error 0.20, reported open). The fill of a convex rim now stays below
+    # the rim's tangent planes. Reached: max error 0.0043 and 0.0000, both
+    # closed, 100 % of the removed samples within 1.5 pitches.
+    n = 100000
+    points, normals = cube_samples(n, seed)
+    kept, kept_normals, removed = cut(points, normals, [((1, 1, 1), 0.3)])
+    res = pcl_holefill.fill(kept, kept_normals, quiet=True)
+    assert cube_distance(res.points[res.filled]).max() < 0.01
+    assert (gap(removed, res.points) <= 1.5 * np.sqrt(6.0 / n)).mean() >= 0.99
+
+
 def test_extra_columns_come_back_for_the_filled_points(corner):
     kept, kept_normals, _ = corner
     colour = np.tile(np.array([[7, 8, 9]], dtype=np.uint8), (len(kept), 1))

@@ -247,6 +247,12 @@ private:
   static void
   encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings);
 
+  /** Has \a sampler keep new points below the rim's tangent planes when
+    * the rim is convex (ElasticSampler::setRimPlanes). */
+  static void
+  keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+                      const HoleScale &scale, const HoleReport &report);
+
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool
   measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,

@@ -174,6 +174,24 @@ public:
     max_rim_gap_along_normal_ = max_gap_along_normal;
   }
 
+  /** \brief New points must not lie above the tangent plane of any of the
+    * rim points given (\a points with unit \a normals) by more than
+    * \a tolerance + \a slope x their distance from it (cloud units, radians).
+    * For the rim of a hole in a convex region (every rim point below every
+    * other's tangent plane) this is the surface's own property; it stops a
+    * face's front that reaches an edge or a corner before the other faces'
+    * fronts do, where the combination constraint has no neighbour to test
+    * against and the rim's outline, seen along the axis, still encloses it. */
+  void
+  setRimPlanes (std::vector<Eigen::Vector3f> points, std::vector<Eigen::Vector3f> normals, float tolerance,
+                float slope)
+  {
+    rim_plane_points_ = std::move (points);
+    rim_plane_normals_ = std::move (normals);
+    rim_plane_tolerance_ = tolerance;
+    rim_plane_slope_ = slope;
+  }
+
   /** \brief Threads for the candidates of one pass (>= 1, default 1). The
     * candidates are placed side by side and kept in order: the result is the
     * same for any number. */
@@ -259,6 +277,9 @@ private:
     * tolerance? Such a sample overshoots an edge the rim shows. */
   bool
   breaksCombinationConstraint (const Eigen::Vector3f &position) const;
+  /** Above one of the rim planes of setRimPlanes? */
+  bool
+  aboveRimPlanes (const Eigen::Vector3f &position) const;
 
   /** The constraint's reach: its radius, at most r. */
   float
@@ -279,6 +300,8 @@ private:
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
   float bound_radius_ = 0.f;
   std::vector<Eigen::Vector3f> rim_;
+  std::vector<Eigen::Vector3f> rim_plane_points_, rim_plane_normals_;
+  float rim_plane_tolerance_ = 0.f, rim_plane_slope_ = 0.f;
   Eigen::Vector3f rim_axis_ = Eigen::Vector3f::UnitZ ();
   float max_rim_gap_along_axis_ = 0.f, max_rim_gap_along_normal_ = 0.f;
   mutable std::vector<signed char> curvature_signs_;  //!< 2 = not computed yet

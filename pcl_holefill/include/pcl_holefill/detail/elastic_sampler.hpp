@@ -131,6 +131,18 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
   return false;
 }
 
+template <typename PointT> bool
+ElasticSampler<PointT>::aboveRimPlanes (const Eigen::Vector3f &position) const
+{
+  for (std::size_t k = 0; k < rim_plane_points_.size (); ++k)
+  {
+    const Eigen::Vector3f d = position - rim_plane_points_[k];
+    if (d.dot (rim_plane_normals_[k]) > rim_plane_tolerance_ + rim_plane_slope_ * d.norm ())
+      return true;
+  }
+  return false;
+}
+
 template <typename PointT> typename ElasticSampler<PointT>::Verdict
 ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
                                Eigen::Vector3f &normal) const
@@ -147,6 +159,8 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
                                                   sqr_distances, 1);
   if (!found.empty ())
     return Verdict::kTooClose;
+  if (aboveRimPlanes (position))
+    return Verdict::kBeyondRim;
   if (!rim_.empty () && rimGapAround (position, rim_axis_, rim_) > max_rim_gap_along_axis_ &&
       rimGapAround (position, normal, rim_) > max_rim_gap_along_normal_)
     return Verdict::kBeyondRim;

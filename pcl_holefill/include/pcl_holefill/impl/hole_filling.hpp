@@ -67,6 +67,18 @@ constexpr float kResumeMinNormalCosine = 0.4f;
 // degrees along the axis (a steep apex) and 281 along their normal (same).
 constexpr float kMaxRimGapAlongAxis = static_cast<float> (M_PI);
 constexpr float kMaxRimGapAlongNormal = static_cast<float> (200.0 * M_PI / 180.0);
+// The fill of a hole in a convex region stays below the rim's tangent
+// planes (ElasticSampler::setRimPlanes), within the constraint's tolerance
+// plus this slope (radians, plus the rim's normal spread) times the
+// distance: a face's front that reached a corner first ran on past it
+// (a corner hole 0.6 across on 100,000 random samples of a cube, exact
+// normals: max error 0.20, now 0.0043; an edge hole at 0.3 % noise: 0.097,
+// now 0.011).
+constexpr float kRimPlaneSlope = 0.05f;
+constexpr float kRimPlaneNoiseSigmas = 4.f;
+// ... when at most this share of the rim's point pairs has one above the
+// other's plane (noise puts 0.1-0.4 % of the pairs of a cube's rim there).
+constexpr float kMaxRimPlaneViolations = 0.02f;
 // A hole's axis is taken when the rim's normals sum to at least this share
 // of their count (they cancel out on a rim around a thin plate's middle).
 constexpr float kMinRimAxisStrength = 0.05f;
@@ -675,6 +687,50 @@ HoleFilling<PointT>::encloseByRim (detail::ElasticSampler<PointT> &sampler, cons
 }
 
 template <typename PointT> void
+HoleFilling<PointT>::keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+                                         const HoleScale &scale, const HoleReport &report)
+{
+  // Rim points evenly along the loop, those next to a crease left out:
+  // their estimated normals are the least sure, and a plane tilted by a few
+  // degrees there cut valid points off a corner (random cubes, PCA normals:
+  // 98.8 -> 89.2 % covered).
+  const PointCloud &cloud = *surroundings.cloud;
+  const std::size_t n = surroundings.rim.size ();
+  const std::size_t step = std::max<std::size_t> (1, (n + detail::kRimOutlinePoints - 1) / detail::kRimOutlinePoints);
+  std::vector<Eigen::Vector3f> points, normals;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (std::size_t k = 0; k < n; k += step)
+  {
+    const int i = surroundings.rim[k];
+    surroundings.search->radiusSearch (cloud[i], detail::kNoiseReachInSpacings * scale.spacing, found, sqr_distances);
+    if (detail::seesCrease (cloud, i, found))
+      continue;
+    points.push_back (cloud[i].getVector3fMap ());
+    normals.push_back (cloud[i].getNormalVector3fMap ().normalized ());
+  }
+  // Noise moves each rim point, and its plane, off the surface: with 96
+  // of them, one lies past 2.5 sigma (the constraint's allowance) on most
+  // noisy rims and cut the whole face's fill off (noisy cubes: 100 -> 89 %
+  // covered). kRimPlaneNoiseSigmas leaves that to chance. The rim's normal
+  // spread and kRimPlaneSlope cover the error of the normals, growing with distance.
+  const float tolerance =
+      std::max (detail::kToleranceInSpacings * scale.spacing, detail::kRimPlaneNoiseSigmas * report.noise);
+  const float slope = detail::kRimPlaneSlope + report.normal_spread;
+  // Convex: (almost) every rim point lies below every other's plane.
+  std::size_t above = 0;
+  for (std::size_t i = 0; i < points.size (); ++i)
+    for (std::size_t j = 0; j < points.size (); ++j)
+    {
+      const Eigen::Vector3f d = points[j] - points[i];
+      above += d.dot (normals[i]) > tolerance + slope * d.norm () ? 1 : 0;
+    }
+  const std::size_t pairs = points.size () * points.size ();
+  if (pairs > 0 && static_cast<float> (above) <= detail::kMaxRimPlaneViolations * static_cast<float> (pairs))
+    sampler.setRimPlanes (std::move (points), std::move (normals), tolerance, slope);
+}
+
+template <typename PointT> void
 HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                                    const HoleScale &scale, HoleReport &report) const
 {
@@ -1119,7 +1175,8 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   // edges off; fitted to one-sided neighbourhoods, they tilt away from the hole.
   const float tolerance =
       std::max (detail::kToleranceInSpacings * scale.spacing, detail::kToleranceInNoiseSigmas * report.noise);
-  if (tolerance <= detail::kRefitMaxToleranceInPitches * scale.pitch)
+  const bool clean_rim = tolerance <= detail::kRefitMaxToleranceInPitches * scale.pitch;
+  if (clean_rim)
   {
     report.refitted_normals = refitCreaseNormals (surroundings, scale, report.noise);
     if (report.noise <= detail::kRimBiasMaxNoiseInSpacings * scale.spacing)
@@ -1127,7 +1184,14 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   }
   sampler.setNumberOfThreads (threads);
   if (loop.closed)  // an open border encloses nothing
+  {
     encloseByRim (sampler, surroundings);
+    // Only where the rim's normals were refitted: noisy PCA normals near
+    // an edge tilt their planes by 10-20 degrees, and those planes cut valid
+    // fill off (random cube edge at 0.1 % noise: 33 % covered).
+    if (clean_rim)
+      keepBelowConvexRim (sampler, surroundings, scale, report);
+  }
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).
   detail::Front front (1);

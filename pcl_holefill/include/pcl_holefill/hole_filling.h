@@ -226,10 +226,10 @@ private:
             PointCloud &filled, HoleReport &report, int threads) const;
 
   /** Refits the normals of the surroundings' input points that PCA blended
-    * across a crease (detail::refitCreaseNormal), with the rim's \a noise;
-    * returns how many. Only the fill's copy changes. */
+    * across a crease (detail::refitCreaseNormal), planes counting neighbours
+    * within \a tolerance; returns how many. Only the fill's copy changes. */
   std::size_t
-  refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const;
+  refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float tolerance) const;
 
   /** Refits by a quadric (detail::quadricNormal) the normals of the input
     * points near the rim that lie on one smooth piece; returns how many

@@ -347,6 +347,21 @@ writeNormals (const std::vector<Eigen::Vector3f> &normals, const std::vector<cha
     }
   return count;
 }
+
+/** The combination constraint's tolerance for a rim of mean spacing
+  * \a spacing and noise \a noise: the allowance of the normal refits too. */
+inline float
+constraintTolerance (float spacing, float noise)
+{
+  return std::max (kToleranceInSpacings * spacing, kToleranceInNoiseSigmas * noise);
+}
+
+/** Every how many rim points the outline takes one (at most kRimOutlinePoints along a rim of \a n). */
+inline std::size_t
+outlineStep (std::size_t n)
+{
+  return std::max<std::size_t> (1, (n + kRimOutlinePoints - 1) / kRimOutlinePoints);
+}
 }  // namespace detail
 
 template <typename PointT> bool
@@ -675,7 +690,7 @@ template <typename PointT> void
 HoleFilling<PointT>::encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings)
 {
   const std::size_t n = surroundings.rim.size ();
-  const std::size_t step = std::max<std::size_t> (1, (n + detail::kRimOutlinePoints - 1) / detail::kRimOutlinePoints);
+  const std::size_t step = detail::outlineStep (n);
   std::vector<Eigen::Vector3f> outline;
   for (std::size_t k = 0; k < n; k += step)
     outline.push_back ((*surroundings.cloud)[surroundings.rim[k]].getVector3fMap ());
@@ -696,7 +711,7 @@ HoleFilling<PointT>::keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler
   // 98.8 -> 89.2 % covered).
   const PointCloud &cloud = *surroundings.cloud;
   const std::size_t n = surroundings.rim.size ();
-  const std::size_t step = std::max<std::size_t> (1, (n + detail::kRimOutlinePoints - 1) / detail::kRimOutlinePoints);
+  const std::size_t step = detail::outlineStep (n);
   std::vector<Eigen::Vector3f> points, normals;
   pcl::Indices found;
   std::vector<float> sqr_distances;
@@ -758,8 +773,7 @@ HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, cons
   report.first_order =
       first_order_ && (report.noise <= detail::kFirstOrderMaxNoiseInSpacings * h || rim.normalsAreLinear ());
   sampler.setFirstOrder (report.first_order);
-  sampler.setConstraintTolerance (
-      std::max (detail::kToleranceInSpacings * h, detail::kToleranceInNoiseSigmas * report.noise));
+  sampler.setConstraintTolerance (detail::constraintTolerance (h, report.noise));
   sampler.setCurvatureSignTolerance (
       std::max (detail::kToleranceInSpacings * h, detail::kSignToleranceInNoiseSigmas * report.noise));
   // A reference point's tangent plane is only as good as its normal. PCA
@@ -1099,14 +1113,12 @@ HoleFilling<PointT>::rimSeesCrease (const Surroundings &surroundings, float reac
 }
 
 template <typename PointT> std::size_t
-HoleFilling<PointT>::refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const
+HoleFilling<PointT>::refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float tolerance) const
 {
   // The plane test counts neighbours within the combination constraint's
   // tolerance (the same allowance for noise) over ~3 pitches (6 h): a
   // plane of a face must hold points beyond the ~2-pitch band of blended
   // normals along the edge.
-  const float tolerance =
-      std::max (detail::kToleranceInSpacings * scale.spacing, detail::kToleranceInNoiseSigmas * noise);
   const float reach = detail::kCreaseReachInSpacings * scale.spacing;
   if (!rimSeesCrease (surroundings, reach))
     return 0;  // a smooth rim: nothing blended for the fill to continue
@@ -1173,12 +1185,11 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   // 2b. On a clean rim, estimated normals refitted where the hole biases
   // them (beyond the paper): blended across a crease, PCA normals round the
   // edges off; fitted to one-sided neighbourhoods, they tilt away from the hole.
-  const float tolerance =
-      std::max (detail::kToleranceInSpacings * scale.spacing, detail::kToleranceInNoiseSigmas * report.noise);
+  const float tolerance = detail::constraintTolerance (scale.spacing, report.noise);
   const bool clean_rim = tolerance <= detail::kRefitMaxToleranceInPitches * scale.pitch;
   if (clean_rim)
   {
-    report.refitted_normals = refitCreaseNormals (surroundings, scale, report.noise);
+    report.refitted_normals = refitCreaseNormals (surroundings, scale, tolerance);
     if (report.noise <= detail::kRimBiasMaxNoiseInSpacings * scale.spacing)
       report.refitted_normals += removeRimNormalBias (surroundings, scale);
   }

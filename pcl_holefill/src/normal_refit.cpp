@@ -120,4 +120,45 @@ quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal,
   return refitted.allFinite () ? refitted.normalized () : unit_normal;
 }
 
+PlaneFit
+fitPlane (const Eigen::Vector3f *positions, int count)
+{
+  PlaneFit plane;
+  if (count < 1)
+    return plane;
+  for (int k = 0; k < count; ++k)
+    plane.centroid += positions[k];
+  plane.centroid /= static_cast<float> (count);
+  Eigen::Matrix3f scatter = Eigen::Matrix3f::Zero ();
+  for (int k = 0; k < count; ++k)
+    scatter += (positions[k] - plane.centroid) * (positions[k] - plane.centroid).transpose ();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver (scatter);
+  plane.normal = solver.eigenvectors ().col (0);
+  plane.residual = std::max (solver.eigenvalues () (0), 0.f) / static_cast<float> (count);
+  return plane;
+}
+
+float
+normalRoughness (const std::vector<Eigen::Vector3f> &unit_normals, const std::vector<std::vector<int>> &neighbours,
+                 const std::vector<char> &use)
+{
+  std::vector<float> angles;
+  for (std::size_t i = 0; i < unit_normals.size (); ++i)
+  {
+    if (!use[i])
+      continue;
+    Eigen::Vector3f sum = Eigen::Vector3f::Zero ();
+    for (const auto q : neighbours[i])
+      if (q >= 0 && static_cast<std::size_t> (q) < use.size () && use[q] && static_cast<std::size_t> (q) != i)
+        sum += unit_normals[q];
+    if (sum.squaredNorm () > 0.f)
+      angles.push_back (std::acos (std::clamp (unit_normals[i].dot (sum.normalized ()), -1.f, 1.f)));
+  }
+  if (angles.empty ())
+    return 0.f;
+  const auto middle = angles.begin () + static_cast<std::ptrdiff_t> (angles.size () / 2);
+  std::nth_element (angles.begin (), middle, angles.end ());
+  return *middle;
+}
+
 }  // namespace pcl_holefill::detail

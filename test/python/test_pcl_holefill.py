@@ -132,9 +132,9 @@ def test_noisy_random_samples_without_normals(model):
     samples, noise of 0.3 % of the diagonal, no normals (estimated and
     oriented by the module). Judged on the noise-free truth: the surface to
     cover and the distance to the exact model, over five seeds."""
-    samples, distance, area, ball = {
-        "sphere": (sphere_samples, sphere_distance, np.pi, ((0.5, 0.85, 0.85), 0.13)),
-        "cube": (cube_samples, cube_distance, 6.0, ((1, 1, 0.5), 0.15)),
+    samples, distance, area, ball, max_error = {
+        "sphere": (sphere_samples, sphere_distance, np.pi, ((0.5, 0.85, 0.85), 0.13), 2.5),
+        "cube": (cube_samples, cube_distance, 6.0, ((1, 1, 0.5), 0.15), 8.5),
     }[model]
     p = pitch(area)
     coverages = []
@@ -149,12 +149,42 @@ def test_noisy_random_samples_without_normals(model):
         assert len(res.reports) == 1, seed  # before the orientation vote: 0 on seeds 41 and 51
         fill = res.points[res.filled]
         coverages.append((gap(missing, res.points) <= 1.5 * p).mean())
-        # reached: 92.1 % (sphere, seed 21) to 100 %; max error 2.0 to 5.2 sigma
-        # (sphere), 2.7 to 7.4 sigma (cube edge); spill at most 2.5 pitches
-        assert coverages[-1] >= 0.9, seed
-        assert distance(fill).max() <= 8.5 * sigma, seed
-        assert (np.linalg.norm(fill - np.asarray(ball[0]), axis=1) <= ball[1] + 3 * p).all(), seed
-    assert np.mean(coverages) >= 0.975  # reached: 98.4 % (sphere), 99.9 % (cube)
+        # reached: 99.5 % (cube, seed 31) to 100 %; max error 0.7 to 1.5 sigma
+        # (sphere; 2.0 to 5.2 before its rough PCA normals were smoothed),
+        # 2.7 to 7.4 sigma (cube edge); spill at most 1.1 pitches
+        assert coverages[-1] >= 0.98, seed
+        assert distance(fill).max() <= max_error * sigma, seed
+        assert (np.linalg.norm(fill - np.asarray(ball[0]), axis=1) <= ball[1] + 2 * p).all(), seed
+    assert np.mean(coverages) >= 0.99  # reached: 100 % (sphere), 99.9 % (cube)
+
+
+@pytest.mark.parametrize("model,noise,bound", [
+    ("sphere", 0.001, 0.006), ("sphere", 0.003, 0.018), ("cube", 0.001, 0.0098)])
+def test_noisy_holes_from_estimated_normals(model, noise, bound):
+    # Noisy random samples, normals estimated by the module (PCA, k = 16),
+    # a sphere cap 32 pitches across or a cube corner, four seeds.
+    # - Sphere: PCA normals at 0.3 % noise scatter by ~10 degrees, and the
+    #   cap came out 0.03-0.22 off (80-94 % covered). Rough normals on a rim
+    #   without a crease are now replaced by PCA over more neighbours, and
+    #   the one-sided tilt at the rim by a quadric over more neighbours.
+    #   Reached: 0.1 %: max error 0.0032-0.0042 (was 0.017-0.036); 0.3 %:
+    #   0.0077-0.0147 (2.8 sigma at most); >= 99.9 % covered.
+    # - Cube corner at 0.1 % (0.27 pitch of noise): the crease refit now runs
+    #   and the quadric takes more neighbours. Reached: 0.0033-0.0079 (was
+    #   0.047-0.056); the bound is the issue's target, 3 sigma + 0.0046.
+    samples, distance, area, ball = {
+        "sphere": (sphere_samples, sphere_distance, np.pi, ((0.5, 0.5, 1.0), 0.2)),
+        "cube": (cube_samples, cube_distance, 6.0, ((1, 1, 1), 0.2)),
+    }[model]
+    for seed in (1, 2, 3, 4):
+        points, normals = samples(SAMPLES, seed)
+        kept, kept_normals, removed = cut(points, normals, [ball])
+        moved = kept + kept_normals * np.random.default_rng(seed + 100).normal(
+            size=(len(kept), 1)) * noise * np.sqrt(3)
+        res = pcl_holefill.fill(moved, quiet=True)
+        assert np.array_equal(res.points[:len(moved)], moved)
+        assert distance(res.points[res.filled]).max() < bound, seed
+        assert (gap(removed, res.points) <= 1.5 * pitch(area)).mean() >= 0.99, seed
 
 
 def test_noisy_random_samples_without_a_hole_come_back_unchanged():

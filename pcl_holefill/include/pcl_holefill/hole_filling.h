@@ -231,11 +231,41 @@ private:
   std::size_t
   refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float tolerance) const;
 
-  /** Refits by a quadric (detail::quadricNormal) the normals of the input
-    * points near the rim that lie on one smooth piece; returns how many
-    * changed. Only the fill's copy changes. */
+  /** Refits by a quadric over \a neighbours (detail::quadricNormal) the
+    * normals of the input points near the rim that lie on one smooth piece;
+    * returns how many changed. Only the fill's copy changes. */
   std::size_t
-  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale) const;
+  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours) const;
+
+  /** Replaces, on a noisy rim, the fill's copy of the normals within
+    * kNoisyRimReachInPitches of the rim by PCA over more neighbours
+    * (wideNeighbours), when the given ones are rougher (\a rough: PCA
+    * normals of noisy points) and the rim shows no crease; returns how many. */
+  std::size_t
+  smoothNoisyNormals (Surroundings &surroundings, const HoleScale &scale, float noise, bool &rough) const;
+
+  /** The refits of the fill's copy of the normals, for a rim of \a noise:
+    * smoothNoisyNormals, refitCreaseNormals, removeRimNormalBias; returns
+    * how many normals changed. */
+  std::size_t
+  refitNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const;
+
+  /** The \a k nearest neighbours of the surroundings' point \a i (\a nearest)
+    * and the positions of those that are usable input points. */
+  static void
+  nearestInputPoints (const Surroundings &surroundings, std::ptrdiff_t i, int k, pcl::Indices &nearest,
+                      std::vector<Eigen::Vector3f> &positions);
+
+  /** Calls \a visit (i, nearest, positions) on the threads of \a surroundings
+    * for each oriented input point i marked in \a marked, with its \a k
+    * nearest neighbours (nearestInputPoints). */
+  template <typename Visit>
+  static void
+  forEachMarked (const Surroundings &surroundings, const std::vector<char> &marked, int k, Visit &&visit);
+
+  /** Marks the surroundings' input points within \a reach of the rim. */
+  static std::vector<char>
+  markNearRim (Surroundings &surroundings, float reach);
 
   /** Does a rim point have a neighbour within \a reach whose normal is ~30 degrees off its own? */
   static bool

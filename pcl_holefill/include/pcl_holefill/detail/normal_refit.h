@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace pcl_holefill::detail
 {
 /** \brief Normals further apart than this (|n_q - n_p|, ~30 degrees) are
@@ -62,5 +64,30 @@ refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
 Eigen::Vector3f
 quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *positions,
                int count);
+
+/** \brief A plane fitted by PCA: its unit normal (on either side), the
+  * centroid it passes through, and the variance of the points along the
+  * normal (zero on a noise-free plane; the noise variance plus what a crease
+  * or the curvature adds otherwise). */
+struct PlaneFit
+{
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ ();
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  float residual = 0.f;
+};
+
+/** \brief The PCA plane of \a count positions (at least one). */
+PlaneFit
+fitPlane (const Eigen::Vector3f *positions, int count);
+
+/** \brief How rough a normal field is: the median, over the points marked in
+  * \a use, of the angle (radians) between a point's normal and the mean of
+  * the normals of its marked neighbours (\a neighbours[i]). Exact normals of
+  * a smooth surface measure what its curvature turns them by between
+  * neighbours; PCA normals of noisy points add their noise. 0 without any
+  * marked point. */
+float
+normalRoughness (const std::vector<Eigen::Vector3f> &unit_normals, const std::vector<std::vector<int>> &neighbours,
+                 const std::vector<char> &use);
 
 }  // namespace pcl_holefill::detail

@@ -91,25 +91,65 @@ constexpr int kAutoPassesSlack = 20;
 // in random samples of a cube with PCA normals, 24 cases: >= 99 % covered
 // 5 -> 23, sum of max errors 0.82 -> 0.06 at 6; 18 and 0.40 at 4.
 constexpr float kCreaseReachInSpacings = 6.f;
-// Normals near a hole are refitted only on rims whose noise allowance (the
-// constraint's tolerance) is under this share of the pitch. A point within
-// the tolerance of an edge lies on both faces' planes, and a wider band of
-// such points near the edges of a thin part took the faces' normals and ran
-// fronts off its end (fin, scan lines, 0.1 % noise: max error 0.008 -> 0.047
-// at 0.5 pitch). Noisier rims keep their normals; the constraint's noise
-// tolerance covers their blending.
-constexpr float kRefitMaxToleranceInPitches = 0.25f;
+// Normals near a hole are refitted to creases and curvature only on rims
+// whose noise allowance (the constraint's tolerance) is under this share of
+// the pitch. 0.25 left PCA normals blended on random cubes at 0.1 % noise
+// (tolerance 0.27 pitch; corner hole, max error 0.008-0.088 over 8 seeds
+// -> 0.003-0.051); at 0.6 the corpus's sums of max errors at 0.1 / 0.3 % went
+// 0.392 / 0.938 -> 0.386 / 0.934. Left: a point within the tolerance of an
+// edge lies on both faces' planes, and on the fin's end (scan lines, 0.1 %)
+// such points took the faces' normals and a front ran off the end (0.008 ->
+// 0.047). Noisier rims keep their normals; the constraint's noise tolerance
+// covers their blending.
+constexpr float kRefitMaxToleranceInPitches = 0.6f;
+// The rim's tangent planes bound the fill (keepBelowConvexRim) only under
+// this: at 0.6 the fin's end above came back (0.050 -> 0.005), but noisy
+// normals along an edge tilt their planes and a random dihedral at 0.1 %
+// went 100 -> 93 % covered.
+constexpr float kRimPlaneMaxToleranceInPitches = 0.25f;
 // The one-sided neighbourhoods of a rim reach this far from it (pitches):
 // the normals within are refitted by a quadric (detail::quadricNormal).
 // A sphere cap 32 pitches across, random samples, PCA normals: max error
 // 0.014 -> 0.0006 refitting within ~1.6 pitches, 0 within ~4.
 constexpr float kRimBiasReachInPitches = 3.f;
-// ... on rims whose noise is under this (mean spacings; exact positions
-// measure 0-0.005 h, the facets of the corpus's meshes). A quadric fitted
-// to noisy neighbours tilts more than the bias it removes: at 0.1 h, a
-// random cube's corner at 0.1 % noise went 0.056 -> 0.086 and voxel-grid
-// cubes at 0.1 % (measured 0.1 h) 0.002 -> 0.009.
+// Rims noisier than this (mean spacings; exact positions measure 0-0.005 h,
+// the facets of the corpus's meshes) are noisy: their quadric fits take
+// more neighbours (quadricNeighbours), and their normals are smoothed when
+// rough (smoothNoisyNormals).
 constexpr float kRimBiasMaxNoiseInSpacings = 0.02f;
+// The quadric's neighbours: 24 on clean rims, this many per unit of noise
+// (noise / spacing) on noisy ones, at most kMaxWideNeighbours. The slope a
+// fit reads off its neighbours errs by ~noise / (reach sqrt(k)), so ~noise
+// / k: 24 on a rim at 0.1 h tilted more than the bias it removed (a random
+// cube corner at 0.1 % noise, 0.056 -> 0.086), ~140 (at 0.19 h) takes it
+// out (random sphere cap at 0.1 %, PCA normals: 0.017-0.036 -> 0.003-0.004;
+// random cube corner: 0.003-0.051 -> 0.003-0.008).
+constexpr float kQuadricNeighboursPerNoise = 750.f;
+// Noisy rims: the normals within this many pitches of the rim are compared
+// with, and may be replaced by, PCA over more neighbours (smoothNoisyNormals).
+constexpr float kNoisyRimReachInPitches = 5.f;
+// ... over this many neighbours per unit of noise (noise / spacing), from 16
+// (PCL's k) to kMaxWideNeighbours. PCA's normal errs by ~noise / (reach
+// sqrt(k)), so ~noise / k; a random sphere cap at 0.3 % noise (0.6 h) came
+// out 0.03-0.22 off with PCL's 16, 0.007-0.024 with 64, 0.008-0.015 with 192.
+constexpr float kWideNeighboursPerNoise = 320.f;
+constexpr int kMaxWideNeighbours = 192;
+constexpr int kPcaNeighbours = 16;
+constexpr std::size_t kMinWideNeighbours = 8;
+// Roughness is measured against this many nearest neighbours' normals ...
+constexpr std::size_t kRoughnessNeighbours = 16;
+// ... and the wide fit replaces normals at most this share as rough: exact
+// normals of noisy points (sphere, 0.3 %: 0.7 degrees against the fit's
+// 0.7) stay; PCA normals (5.7 degrees) go.
+constexpr float kRougherBy = 0.7f;
+// A wide fit whose residual variance exceeds this many noise variances
+// straddles a crease (sphere at 0.5 % noise, K = 192: at most 1.8; the
+// pyramid's apex: 2.6 and more) ...
+constexpr float kCreaseResidualInNoiseVariances = 2.2f;
+// ... and a rim with more such fits than this share keeps its normals: a
+// wide PCA blends faces over several pitches (random cube edge at 0.3 %:
+// coverage 99 -> 84 %; pyramid apex at 0.5 %: 100 -> 63 %).
+constexpr float kMaxCreasedShare = 0.05f;
 // Neighbours from which the sampling pitch around a rim point is measured.
 constexpr int kPitchNeighbours = 16;
 // More neighbouring normals than this pointing opposite ways: not oriented.
@@ -361,6 +401,31 @@ inline std::size_t
 outlineStep (std::size_t n)
 {
   return std::max<std::size_t> (1, (n + kRimOutlinePoints - 1) / kRimOutlinePoints);
+}
+
+/** How many neighbours a fit over \a per_noise neighbours per unit of noise
+  * takes on a rim of mean spacing \a spacing and noise \a noise. */
+inline int
+neighboursForNoise (float per_noise, float noise, float spacing, int fewest)
+{
+  const float wanted = std::ceil (per_noise * noise / spacing);
+  return std::isfinite (wanted) ? static_cast<int> (std::clamp (wanted, static_cast<float> (fewest),
+                                                                static_cast<float> (kMaxWideNeighbours)))
+                                : fewest;
+}
+
+/** The quadric's neighbours (kQuadricNeighboursPerNoise). */
+inline int
+quadricNeighbours (float noise, float spacing)
+{
+  return neighboursForNoise (kQuadricNeighboursPerNoise, noise, spacing, kNoiseNeighbours);
+}
+
+/** The wide PCA's neighbours (kWideNeighboursPerNoise). */
+inline int
+wideNeighbours (float noise, float spacing)
+{
+  return neighboursForNoise (kWideNeighboursPerNoise, noise, spacing, kPcaNeighbours);
 }
 }  // namespace detail
 
@@ -755,7 +820,6 @@ HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, cons
   sampler.setEquilibriumDistance (scale.d_eq);
   const detail::RimStatistics rim = detail::measureRimStatistics (
       *surroundings.cloud, *surroundings.search, surroundings.rim, detail::kNoiseReachInSpacings * h);
-  report.noise = rim.noise;
   report.normal_spread = rim.normal_spread;
   // Automatic sigma_n: g2 must tell a crease from what the normals do on one
   // smooth piece (its curvature, the noise of estimated normals). Narrower
@@ -1060,43 +1124,23 @@ HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale
 }
 
 template <typename PointT> std::size_t
-HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale) const
+HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours) const
 {
   PointCloud &cloud = *surroundings.cloud;
   // The points whose neighbourhoods the hole makes one-sided: those near the rim.
-  std::vector<char> near_rim (surroundings.input_points, 0);
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
-  for (const auto i : surroundings.rim)
-  {
-    surroundings.search->radiusSearch (cloud[i], detail::kRimBiasReachInPitches * scale.pitch, found, sqr_distances);
-    for (const auto q : found)
-      if (static_cast<std::size_t> (q) < surroundings.input_points)
-        near_rim[q] = 1;
-  }
+  const std::vector<char> near_rim = markNearRim (surroundings, detail::kRimBiasReachInPitches * scale.pitch);
   const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
   std::vector<Eigen::Vector3f> refitted (n);
   std::vector<char> changed (n, 0);
-#pragma omp parallel for num_threads(surroundings.threads) schedule(dynamic, 64)
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-  {
-    if (!near_rim[i] || !detail::isOrientedPoint (cloud[i]))
-      continue;
-    thread_local std::vector<Eigen::Vector3f> positions;
-    pcl::Indices nearest;
-    std::vector<float> nearest_sqr_distances;
-    surroundings.search->nearestKSearch (cloud[i], detail::kNoiseNeighbours, nearest, nearest_sqr_distances);
+  forEachMarked (surroundings, near_rim, neighbours, [&] (std::ptrdiff_t i, const pcl::Indices &nearest,
+                                                          const std::vector<Eigen::Vector3f> &positions) {
     if (detail::seesCrease (cloud, static_cast<int> (i), nearest))
-      continue;  // one smooth piece only: creases are refitCreaseNormals' work
-    positions.clear ();
-    for (const auto q : nearest)
-      if (detail::isOrientedPoint (cloud[q]))
-        positions.push_back (cloud[q].getVector3fMap ());
+      return;  // one smooth piece only: creases are refitCreaseNormals' work
     const Eigen::Vector3f own = cloud[i].getNormalVector3fMap ().normalized ();
     refitted[i] = detail::quadricNormal (cloud[i].getVector3fMap (), own, positions.data (),
                                          static_cast<int> (positions.size ()));
     changed[i] = refitted[i] != own ? 1 : 0;
-  }
+  });
   return detail::writeNormals (refitted, changed, cloud);
 }
 
@@ -1110,6 +1154,124 @@ HoleFilling<PointT>::rimSeesCrease (const Surroundings &surroundings, float reac
     surroundings.search->radiusSearch (cloud[i], reach, found, sqr_distances);
     return detail::seesCrease (cloud, i, found);
   });
+}
+
+template <typename PointT> std::size_t
+HoleFilling<PointT>::refitNormals (Surroundings &surroundings, const HoleScale &scale, float noise) const
+{
+  std::size_t refitted = 0;
+  bool rough = false;
+  const bool noisy = noise > detail::kRimBiasMaxNoiseInSpacings * scale.spacing;
+  if (noisy)
+    refitted += smoothNoisyNormals (surroundings, scale, noise, rough);
+  const float tolerance = detail::constraintTolerance (scale.spacing, noise);
+  if (tolerance > detail::kRefitMaxToleranceInPitches * scale.pitch)
+    return refitted;
+  // Blended across a crease, PCA normals round the edges off; fitted to
+  // one-sided neighbourhoods, they tilt away from the hole.
+  refitted += refitCreaseNormals (surroundings, scale, tolerance);
+  if (!noisy || rough)
+    refitted += removeRimNormalBias (surroundings, scale, detail::quadricNeighbours (noise, scale.spacing));
+  return refitted;
+}
+
+template <typename PointT>
+template <typename Visit>
+void
+HoleFilling<PointT>::forEachMarked (const Surroundings &surroundings, const std::vector<char> &marked, int k,
+                                    Visit &&visit)
+{
+  const PointCloud &cloud = *surroundings.cloud;
+  const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
+#pragma omp parallel for num_threads(surroundings.threads) schedule(dynamic, 64)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+  {
+    if (!marked[i] || !detail::isOrientedPoint (cloud[i]))
+      continue;
+    thread_local std::vector<Eigen::Vector3f> positions;
+    thread_local pcl::Indices nearest;
+    nearestInputPoints (surroundings, i, k, nearest, positions);
+    visit (i, nearest, positions);
+  }
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::nearestInputPoints (const Surroundings &surroundings, std::ptrdiff_t i, int k,
+                                         pcl::Indices &nearest, std::vector<Eigen::Vector3f> &positions)
+{
+  const PointCloud &cloud = *surroundings.cloud;
+  std::vector<float> sqr_distances;
+  surroundings.search->nearestKSearch (cloud[i], k, nearest, sqr_distances);
+  positions.clear ();
+  for (const auto q : nearest)
+    if (static_cast<std::size_t> (q) < surroundings.input_points && detail::isOrientedPoint (cloud[q]))
+      positions.push_back (cloud[q].getVector3fMap ());
+}
+
+template <typename PointT> std::vector<char>
+HoleFilling<PointT>::markNearRim (Surroundings &surroundings, float reach)
+{
+  const PointCloud &cloud = *surroundings.cloud;
+  std::vector<char> near_rim (surroundings.input_points, 0);
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : surroundings.rim)
+  {
+    surroundings.search->radiusSearch (cloud[i], reach, found, sqr_distances);
+    for (const auto q : found)
+      if (static_cast<std::size_t> (q) < surroundings.input_points)
+        near_rim[q] = 1;
+  }
+  return near_rim;
+}
+
+template <typename PointT> std::size_t
+HoleFilling<PointT>::smoothNoisyNormals (Surroundings &surroundings, const HoleScale &scale, float noise,
+                                         bool &rough) const
+{
+  rough = false;
+  const int k = detail::wideNeighbours (noise, scale.spacing);
+  const float reach = detail::kNoisyRimReachInPitches * scale.pitch;
+  const std::vector<char> near_rim = markNearRim (surroundings, reach);
+  // The fits of the points near the rim read neighbours ~sqrt(k) spacings further.
+  const std::vector<char> fitted = markNearRim (surroundings, reach + std::sqrt (static_cast<float> (k)) * scale.spacing);
+  PointCloud &cloud = *surroundings.cloud;
+  const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
+  std::vector<Eigen::Vector3f> own (n, Eigen::Vector3f::Zero ()), wide (n, Eigen::Vector3f::Zero ());
+  std::vector<float> residual (n, 0.f);
+  std::vector<std::vector<int>> nearest_few (n);
+  std::vector<char> use (n, 0);
+  forEachMarked (surroundings, fitted, k, [&] (std::ptrdiff_t i, const pcl::Indices &nearest,
+                                               const std::vector<Eigen::Vector3f> &positions) {
+    if (positions.size () < detail::kMinWideNeighbours)
+      return;
+    const detail::PlaneFit plane = detail::fitPlane (positions.data (), static_cast<int> (positions.size ()));
+    own[i] = cloud[i].getNormalVector3fMap ().normalized ();
+    wide[i] = plane.normal.dot (own[i]) < 0.f ? Eigen::Vector3f (-plane.normal) : plane.normal;
+    residual[i] = plane.residual;
+    const auto few = std::min<std::size_t> (nearest.size (), detail::kRoughnessNeighbours);
+    nearest_few[i].assign (nearest.begin (), nearest.begin () + static_cast<std::ptrdiff_t> (few));
+    use[i] = near_rim[i];
+  });
+  // Only where the given normals are rougher than the wide fit: exact
+  // normals of noisy points are smooth already, and a fit would add its own
+  // noise and tilt to them.
+  rough = detail::normalRoughness (wide, nearest_few, use) <
+          detail::kRougherBy * detail::normalRoughness (own, nearest_few, use);
+  if (!rough)
+    return 0;
+  // A wide plane straddling a crease fits no face: its residual exceeds
+  // the noise's. Creased rims keep their normals for refitCreaseNormals.
+  std::size_t fits = 0, creased = 0;
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    if (use[i])
+    {
+      ++fits;
+      creased += residual[i] > detail::kCreaseResidualInNoiseVariances * noise * noise ? 1 : 0;
+    }
+  if (static_cast<float> (creased) > detail::kMaxCreasedShare * static_cast<float> (fits))
+    return 0;
+  return detail::writeNormals (wide, use, cloud);
 }
 
 template <typename PointT> std::size_t
@@ -1176,31 +1338,22 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   report.equilibrium_distance = scale.d_eq;
   report.radius = scale.radius;
 
-  // 2. The surroundings, and the sampler working on them.
+  // 2. The surroundings; the fill's copy of their normals refitted where
+  // the hole or the noise biases them (beyond the paper); the sampler.
   Surroundings surroundings;
   gatherSurroundings (working, search, rim, scale, surroundings);
   surroundings.threads = threads;
+  report.noise = detail::measureRimStatistics (*surroundings.cloud, *surroundings.search, surroundings.rim,
+                                               detail::kNoiseReachInSpacings * scale.spacing)
+                     .noise;
+  report.refitted_normals = refitNormals (surroundings, scale, report.noise);
   detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);
-  // 2b. On a clean rim, estimated normals refitted where the hole biases
-  // them (beyond the paper): blended across a crease, PCA normals round the
-  // edges off; fitted to one-sided neighbourhoods, they tilt away from the hole.
-  const float tolerance = detail::constraintTolerance (scale.spacing, report.noise);
-  const bool clean_rim = tolerance <= detail::kRefitMaxToleranceInPitches * scale.pitch;
-  if (clean_rim)
-  {
-    report.refitted_normals = refitCreaseNormals (surroundings, scale, tolerance);
-    if (report.noise <= detail::kRimBiasMaxNoiseInSpacings * scale.spacing)
-      report.refitted_normals += removeRimNormalBias (surroundings, scale);
-  }
   sampler.setNumberOfThreads (threads);
   if (loop.closed)  // an open border encloses nothing
   {
     encloseByRim (sampler, surroundings);
-    // Only where the rim's normals were refitted: noisy PCA normals near
-    // an edge tilt their planes by 10-20 degrees, and those planes cut valid
-    // fill off (random cube edge at 0.1 % noise: 33 % covered).
-    if (clean_rim)
+    if (detail::constraintTolerance (scale.spacing, report.noise) <= detail::kRimPlaneMaxToleranceInPitches * scale.pitch)
       keepBelowConvexRim (sampler, surroundings, scale, report);
   }
 

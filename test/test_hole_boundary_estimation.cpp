@@ -254,6 +254,66 @@ TEST (LoopTracing, AStraightPieceEndingNearItsStartIsNoLoop)
   EXPECT_FALSE (loops[0].closed);
 }
 
+// A long rim with two gaps a little longer than a link (noisy random samples
+// leave such gaps: a cap cut from a sphere at 0.1 % noise came out as two
+// open pieces and was not filled): its pieces are joined into one loop.
+TEST (LoopTracing, PiecesOfOneRimAcrossShortGapsAreOneLoop)
+{
+  std::vector<Eigen::Vector3f> all_positions, all_normals, all_gaps, positions, normals, gaps;
+  const float radius = 8.f;
+  arc (radius, 2.f * static_cast<float> (M_PI) - 0.03f, true, all_positions, all_normals, all_gaps);
+  for (std::size_t i = 0; i < all_positions.size (); ++i)
+  {
+    const float a = std::atan2 (all_positions[i].y (), all_positions[i].x ());
+    // Gaps of 1.5 and 1.8 links along the rim.
+    if ((a > 1.f && a < 1.f + 1.5f / radius) || (a > -2.f && a < -2.f + 1.8f / radius))
+      continue;
+    positions.push_back (all_positions[i]);
+    normals.push_back (all_normals[i]);
+    gaps.push_back (all_gaps[i]);
+  }
+  const auto loops = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  ASSERT_EQ (loops.size (), 1u);
+  EXPECT_TRUE (loops[0].closed);
+  EXPECT_GE (loops[0].members.size (), positions.size () - 8);
+
+  // Gaps of 2.5 links are two rims: nothing joined, nothing closed.
+  positions.clear ();
+  normals.clear ();
+  gaps.clear ();
+  for (std::size_t i = 0; i < all_positions.size (); ++i)
+  {
+    const float a = std::atan2 (all_positions[i].y (), all_positions[i].x ());
+    if ((a > 1.f && a < 1.f + 2.5f / radius) || (a > -2.f && a < -2.f + 2.5f / radius))
+      continue;
+    positions.push_back (all_positions[i]);
+    normals.push_back (all_normals[i]);
+    gaps.push_back (all_gaps[i]);
+  }
+  const auto apart = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  ASSERT_EQ (apart.size (), 2u);
+  EXPECT_FALSE (apart[0].closed);
+  EXPECT_FALSE (apart[1].closed);
+}
+
+// Two straight pieces of a border, one continuing the other across a gap of
+// 1.5 links, are joined, but a straight border is no loop.
+TEST (LoopTracing, AStraightBorderAcrossAGapStaysOpen)
+{
+  std::vector<Eigen::Vector3f> positions, normals, gaps;
+  for (float x = 0.f; x <= 10.f; x += 0.25f)
+    if (x < 4.f || x > 5.5f)
+    {
+      positions.emplace_back (x, 0.f, 0.f);
+      normals.push_back (Eigen::Vector3f::UnitZ ());
+      gaps.push_back (Eigen::Vector3f::UnitY ());
+    }
+  const auto loops = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  ASSERT_EQ (loops.size (), 1u);
+  EXPECT_FALSE (loops[0].closed);
+  EXPECT_GE (loops[0].members.size (), positions.size () - 4);
+}
+
 // The angular-gap test on a plane: neighbours on rings around the point, 10
 // degrees apart, none strictly within 60 degrees of +x. The gap is measured
 // between the nearest neighbours on either side, its bisector points into it.

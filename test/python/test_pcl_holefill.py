@@ -272,6 +272,27 @@ def test_a_large_corner_hole_stays_on_the_cube(seed):
     assert (gap(removed, res.points) <= 1.5 * np.sqrt(6.0 / n)).mean() >= 0.99
 
 
+def test_a_large_noisy_hole_is_found_whole():
+    # A cap 0.3 in radius cut from 100,000 random samples of the sphere at
+    # 0.1 % noise: the rim's flagged points left two gaps of 4.6 and 5.9
+    # pitches (the link is 4.5), the walk gave two open pieces, and the hole
+    # was neither reported nor filled. Open pieces continuing each other
+    # across up to 2 links are now joined. Reached, exact normals: one
+    # closed hole, 100 % covered, max error 0.0016. (With normals estimated
+    # from the noisy points the same hole is found too, but only 69 % is
+    # covered: the fill rides up to 0.03 above the cap.)
+    n = 100000
+    points, normals = sphere_samples(n, 1)
+    kept, kept_normals, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.3)])
+    moved = kept + kept_normals * np.random.default_rng(101).normal(size=(len(kept), 1)) * 0.001 * np.sqrt(3)
+    assert len(pcl_holefill.detect_holes(moved)) == 1
+    res = pcl_holefill.fill(moved, kept_normals, quiet=True)
+    assert len(res.reports) == 1 and res.reports[0]["closed"]
+    assert np.array_equal(res.points[:len(moved)], moved)
+    assert sphere_distance(res.points[res.filled]).max() < 0.003
+    assert (gap(removed, res.points) <= 1.5 * np.sqrt(np.pi / n)).mean() >= 0.99
+
+
 def test_extra_columns_come_back_for_the_filled_points(corner):
     kept, kept_normals, _ = corner
     colour = np.tile(np.array([[7, 8, 9]], dtype=np.uint8), (len(kept), 1))

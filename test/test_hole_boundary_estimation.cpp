@@ -259,38 +259,31 @@ TEST (LoopTracing, AStraightPieceEndingNearItsStartIsNoLoop)
 // open pieces and was not filled): its pieces are joined into one loop.
 TEST (LoopTracing, PiecesOfOneRimAcrossShortGapsAreOneLoop)
 {
-  std::vector<Eigen::Vector3f> all_positions, all_normals, all_gaps, positions, normals, gaps;
+  std::vector<Eigen::Vector3f> all_positions, all_normals, all_gaps;
   const float radius = 8.f;
   arc (radius, 2.f * static_cast<float> (M_PI) - 0.03f, true, all_positions, all_normals, all_gaps);
-  for (std::size_t i = 0; i < all_positions.size (); ++i)
-  {
-    const float a = std::atan2 (all_positions[i].y (), all_positions[i].x ());
-    // Gaps of 1.5 and 1.8 links along the rim.
-    if ((a > 1.f && a < 1.f + 1.5f / radius) || (a > -2.f && a < -2.f + 1.8f / radius))
-      continue;
-    positions.push_back (all_positions[i]);
-    normals.push_back (all_normals[i]);
-    gaps.push_back (all_gaps[i]);
-  }
-  const auto loops = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  // The circle without two arcs of the given lengths (links), at angles 1 and -2.
+  const auto traceWithGaps = [&] (float first, float second, std::size_t &kept) {
+    std::vector<Eigen::Vector3f> positions, normals, gaps;
+    for (std::size_t i = 0; i < all_positions.size (); ++i)
+    {
+      const float a = std::atan2 (all_positions[i].y (), all_positions[i].x ());
+      if ((a > 1.f && a < 1.f + first / radius) || (a > -2.f && a < -2.f + second / radius))
+        continue;
+      positions.push_back (all_positions[i]);
+      normals.push_back (all_normals[i]);
+      gaps.push_back (all_gaps[i]);
+    }
+    kept = positions.size ();
+    return detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  };
+  std::size_t kept = 0;
+  const auto loops = traceWithGaps (1.5f, 1.8f, kept);
   ASSERT_EQ (loops.size (), 1u);
   EXPECT_TRUE (loops[0].closed);
-  EXPECT_GE (loops[0].members.size (), positions.size () - 8);
-
+  EXPECT_GE (loops[0].members.size (), kept - 8);
   // Gaps of 2.5 links are two rims: nothing joined, nothing closed.
-  positions.clear ();
-  normals.clear ();
-  gaps.clear ();
-  for (std::size_t i = 0; i < all_positions.size (); ++i)
-  {
-    const float a = std::atan2 (all_positions[i].y (), all_positions[i].x ());
-    if ((a > 1.f && a < 1.f + 2.5f / radius) || (a > -2.f && a < -2.f + 2.5f / radius))
-      continue;
-    positions.push_back (all_positions[i]);
-    normals.push_back (all_normals[i]);
-    gaps.push_back (all_gaps[i]);
-  }
-  const auto apart = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  const auto apart = traceWithGaps (2.5f, 2.5f, kept);
   ASSERT_EQ (apart.size (), 2u);
   EXPECT_FALSE (apart[0].closed);
   EXPECT_FALSE (apart[1].closed);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <tuple>
 
 namespace pcl_holefill::detail
 {
@@ -90,40 +91,72 @@ endsNearStart (const std::vector<int> &path, const std::vector<Eigen::Vector3f> 
 
 /** Joins the open loops whose pieces continue each other: the end of one
   * within kMaxJoinGapInLinks of the start of another, ahead of its walk,
-  * on the same side of the surface. A chain that comes back near its start
-  * is a closed loop. At most one join per open loop. */
+  * on the same side of the surface; the shortest gaps first. A chain that
+  * comes back near its start is a closed loop and takes no further piece.
+  * One search per open loop, so a scan with many border pieces stays cheap. */
 void
 joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3f> &positions,
                 const std::vector<Eigen::Vector3f> &normals, const std::vector<Eigen::Vector3f> &tangents,
                 float link)
 {
+  std::vector<std::size_t> open;
+  std::vector<Eigen::Vector3f> starts;
+  for (std::size_t l = 0; l < loops.size (); ++l)
+    if (!loops[l].closed && !loops[l].members.empty ())
+    {
+      open.push_back (l);
+      starts.push_back (positions[loops[l].members.front ()]);
+    }
+  if (open.size () < 2)
+    return;
   const float reach = kMaxJoinGapInLinks * link;
-  for (std::size_t round = 0; round < loops.size (); ++round)
+  PointGrid grid (reach);
+  grid.build (starts);
+  struct Join
   {
-    std::size_t best_a = loops.size (), best_b = loops.size ();
-    float best = reach;
-    for (std::size_t a = 0; a < loops.size (); ++a)
-      for (std::size_t b = 0; b < loops.size (); ++b)
-      {
-        if (a == b || loops[a].closed || loops[b].closed || loops[a].members.empty () || loops[b].members.empty ())
-          continue;
-        const int end = loops[a].members.back (), start = loops[b].members.front ();
-        const Eigen::Vector3f gap = positions[start] - positions[end];
-        const float length = gap.norm ();
-        if (length <= best && gap.dot (tangents[end]) > 0.f && normals[end].dot (normals[start]) >= kMinLinkNormalCosine)
-        {
-          best = length;
-          best_a = a;
-          best_b = b;
-        }
-      }
-    if (best_a == loops.size ())
-      return;
-    auto &joined = loops[best_a].members;
-    joined.insert (joined.end (), loops[best_b].members.begin (), loops[best_b].members.end ());
-    loops[best_a].closed = endsNearStart (joined, positions, link);
-    loops.erase (loops.begin () + static_cast<std::ptrdiff_t> (best_b));
+    float length;
+    std::size_t from, to;  // loop indices: from's end, to's start
+  };
+  std::vector<Join> joins;
+  std::vector<PointGrid::Neighbour> near;
+  for (std::size_t x = 0; x < open.size (); ++x)
+  {
+    const int end = loops[open[x]].members.back ();
+    grid.withinRadius (positions[end], reach, near);
+    for (const auto &q : near)
+    {
+      const std::size_t to = open[static_cast<std::size_t> (q.id)];
+      const int start = loops[to].members.front ();
+      if (to != open[x] && (positions[start] - positions[end]).dot (tangents[end]) > 0.f &&
+          normals[end].dot (normals[start]) >= kMinLinkNormalCosine)
+        joins.push_back ({std::sqrt (q.sqr_distance), open[x], to});
+    }
   }
+  std::sort (joins.begin (), joins.end (), [] (const Join &l, const Join &r) {
+    return std::tie (l.length, l.from, l.to) < std::tie (r.length, r.from, r.to);
+  });
+  // Chains of pieces: the head of the chain a tail ends, the tail of a head's
+  // chain; a piece is followed (its end taken) or preceded (its start) once.
+  std::vector<std::size_t> head_of (loops.size ()), tail_of (loops.size ());
+  std::vector<char> followed (loops.size (), 0), preceded (loops.size (), 0);
+  for (std::size_t l = 0; l < loops.size (); ++l)
+    head_of[l] = tail_of[l] = l;
+  for (const Join &join : joins)
+  {
+    const std::size_t head = head_of[join.from];
+    if (followed[join.from] || preceded[join.to] || head == join.to || loops[head].closed)
+      continue;
+    const std::size_t tail = tail_of[join.to];
+    auto &chain = loops[head].members;
+    chain.insert (chain.end (), loops[join.to].members.begin (), loops[join.to].members.end ());
+    loops[join.to].members.clear ();
+    followed[join.from] = preceded[join.to] = 1;
+    head_of[tail] = head;
+    tail_of[head] = tail;
+    loops[head].closed = endsNearStart (chain, positions, link);
+  }
+  loops.erase (std::remove_if (loops.begin (), loops.end (), [] (const TracedLoop &l) { return l.members.empty (); }),
+               loops.end ());
 }
 
 /** Walks one linked set from \a start. Returns the ordered path. */

@@ -263,9 +263,10 @@ private:
   static void
   forEachMarked (const Surroundings &surroundings, const std::vector<char> &marked, int k, Visit &&visit);
 
-  /** Marks the surroundings' input points within \a reach of the rim. */
+  /** Marks the surroundings' input points within \a reach of the rim: 2
+    * within \a core_reach of it, 1 farther. */
   static std::vector<char>
-  markNearRim (Surroundings &surroundings, float reach);
+  markNearRim (Surroundings &surroundings, float reach, float core_reach);
 
   /** Does a rim point have a neighbour within \a reach whose normal is ~30 degrees off its own? */
   static bool

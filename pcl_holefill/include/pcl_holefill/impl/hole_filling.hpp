@@ -314,8 +314,6 @@ linearNormalResidual (const pcl::PointCloud<PointT> &cloud, int i, const pcl::In
   * points, so that the few near a crease do not count. */
 struct RimStatistics
 {
-  /** RMS height of the neighbours over their fitted quadric: the noise. */
-  float noise = 0.f;
   /** Median |n_p - n_q| over the neighbours: curvature within the reach and
     * the noise of estimated normals (a crease shows in fewer than half of a
     * point's neighbours, so it does not count). */
@@ -337,34 +335,53 @@ struct RimStatistics
   }
 };
 
+// Rim points with fewer neighbours within the statistics' reach are left out.
+constexpr int kMinStatisticsNeighbours = 5;
+
+inline void
+keepFinite (std::vector<float> &values, float value)
+{
+  if (std::isfinite (value))
+    values.push_back (value);
+}
+
+/** The rim's noise: the median over rim points of the RMS height of their
+  * kNoiseNeighbours over their fitted quadric. Measured on the given
+  * normals, before the refits that depend on it. */
+template <typename PointT> float
+measureRimNoise (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
+                 float reach)
+{
+  std::vector<float> noise;
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (const auto i : rim)
+    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) >= kMinStatisticsNeighbours &&
+        search.nearestKSearch (cloud[i], kNoiseNeighbours, found, sqr_distances) > 0)
+      keepFinite (noise, heightFieldRms (cloud, i, found));
+  return median (noise);
+}
+
 template <typename PointT> RimStatistics
 measureRimStatistics (const pcl::PointCloud<PointT> &cloud, pcl::search::Search<PointT> &search,
                       const pcl::Indices &rim, float reach)
 {
-  constexpr int kMinNeighbours = 5;
   constexpr int kMinFitNeighbours = 8;  // a fit of 3 unknowns per component, with some to spare
-  std::vector<float> noise, spread, residual, scratch;
+  std::vector<float> spread, residual, scratch;
   std::size_t seen = 0, creased = 0;
-  pcl::Indices found, nearest;
+  pcl::Indices found;
   std::vector<float> sqr_distances;
-  auto keep = [] (std::vector<float> &values, float value) {
-    if (std::isfinite (value))
-      values.push_back (value);
-  };
   for (const auto i : rim)
   {
-    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < kMinNeighbours)
+    if (search.radiusSearch (cloud[i], reach, found, sqr_distances) < kMinStatisticsNeighbours)
       continue;
     ++seen;
-    if (search.nearestKSearch (cloud[i], kNoiseNeighbours, nearest, sqr_distances) > 0)
-      keep (noise, heightFieldRms (cloud, i, nearest));
-    keep (spread, normalSpread (cloud, i, found, scratch));
+    keepFinite (spread, normalSpread (cloud, i, found, scratch));
     creased += seesCrease (cloud, i, found) ? 1 : 0;
     if (found.size () >= kMinFitNeighbours)
-      keep (residual, linearNormalResidual (cloud, i, found, reach, kMinFitNeighbours));
+      keepFinite (residual, linearNormalResidual (cloud, i, found, reach, kMinFitNeighbours));
   }
   RimStatistics statistics;
-  statistics.noise = median (noise);
   statistics.normal_spread = median (spread);
   statistics.nonlinearity = median (residual);
   statistics.crease_share = seen ? static_cast<float> (creased) / seen : 0.f;
@@ -1128,7 +1145,8 @@ HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const Hole
 {
   PointCloud &cloud = *surroundings.cloud;
   // The points whose neighbourhoods the hole makes one-sided: those near the rim.
-  const std::vector<char> near_rim = markNearRim (surroundings, detail::kRimBiasReachInPitches * scale.pitch);
+  const float reach = detail::kRimBiasReachInPitches * scale.pitch;
+  const std::vector<char> near_rim = markNearRim (surroundings, reach, reach);
   const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
   std::vector<Eigen::Vector3f> refitted (n);
   std::vector<char> changed (n, 0);
@@ -1209,7 +1227,7 @@ HoleFilling<PointT>::nearestInputPoints (const Surroundings &surroundings, std::
 }
 
 template <typename PointT> std::vector<char>
-HoleFilling<PointT>::markNearRim (Surroundings &surroundings, float reach)
+HoleFilling<PointT>::markNearRim (Surroundings &surroundings, float reach, float core_reach)
 {
   const PointCloud &cloud = *surroundings.cloud;
   std::vector<char> near_rim (surroundings.input_points, 0);
@@ -1218,9 +1236,12 @@ HoleFilling<PointT>::markNearRim (Surroundings &surroundings, float reach)
   for (const auto i : surroundings.rim)
   {
     surroundings.search->radiusSearch (cloud[i], reach, found, sqr_distances);
-    for (const auto q : found)
-      if (static_cast<std::size_t> (q) < surroundings.input_points)
-        near_rim[q] = 1;
+    for (std::size_t f = 0; f < found.size (); ++f)
+      if (static_cast<std::size_t> (found[f]) < surroundings.input_points)
+      {
+        const char mark = sqr_distances[f] <= core_reach * core_reach ? 2 : 1;
+        near_rim[found[f]] = std::max (near_rim[found[f]], mark);
+      }
   }
   return near_rim;
 }
@@ -1232,9 +1253,9 @@ HoleFilling<PointT>::smoothNoisyNormals (Surroundings &surroundings, const HoleS
   rough = false;
   const int k = detail::wideNeighbours (noise, scale.spacing);
   const float reach = detail::kNoisyRimReachInPitches * scale.pitch;
-  const std::vector<char> near_rim = markNearRim (surroundings, reach);
-  // The fits of the points near the rim read neighbours ~sqrt(k) spacings further.
-  const std::vector<char> fitted = markNearRim (surroundings, reach + std::sqrt (static_cast<float> (k)) * scale.spacing);
+  // 2: within reach, to refit; 1: read by their fits, ~sqrt(k) spacings further.
+  const std::vector<char> fitted =
+      markNearRim (surroundings, reach + std::sqrt (static_cast<float> (k)) * scale.spacing, reach);
   PointCloud &cloud = *surroundings.cloud;
   const auto n = static_cast<std::ptrdiff_t> (surroundings.input_points);
   std::vector<Eigen::Vector3f> own (n, Eigen::Vector3f::Zero ()), wide (n, Eigen::Vector3f::Zero ());
@@ -1251,7 +1272,7 @@ HoleFilling<PointT>::smoothNoisyNormals (Surroundings &surroundings, const HoleS
     residual[i] = plane.residual;
     const auto few = std::min<std::size_t> (nearest.size (), detail::kRoughnessNeighbours);
     nearest_few[i].assign (nearest.begin (), nearest.begin () + static_cast<std::ptrdiff_t> (few));
-    use[i] = near_rim[i];
+    use[i] = fitted[i] == 2 ? 1 : 0;
   });
   // Only where the given normals are rougher than the wide fit: exact
   // normals of noisy points are smooth already, and a fit would add its own
@@ -1343,9 +1364,8 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   Surroundings surroundings;
   gatherSurroundings (working, search, rim, scale, surroundings);
   surroundings.threads = threads;
-  report.noise = detail::measureRimStatistics (*surroundings.cloud, *surroundings.search, surroundings.rim,
-                                               detail::kNoiseReachInSpacings * scale.spacing)
-                     .noise;
+  report.noise = detail::measureRimNoise (*surroundings.cloud, *surroundings.search, surroundings.rim,
+                                          detail::kNoiseReachInSpacings * scale.spacing);
   report.refitted_normals = refitNormals (surroundings, scale, report.noise);
   detail::ElasticSampler<PointT> sampler;
   setUpSampler (sampler, surroundings, scale, report);

@@ -232,10 +232,11 @@ private:
   refitCreaseNormals (Surroundings &surroundings, const HoleScale &scale, float tolerance) const;
 
   /** Refits by a quadric over \a neighbours (detail::quadricNormal) the
-    * normals of the input points near the rim that lie on one smooth piece;
+    * normals of the input points near the rim that lie on one smooth piece
+    * (all of them when \a one_piece: the rim's wide fits showed no crease);
     * returns how many changed. Only the fill's copy changes. */
   std::size_t
-  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours) const;
+  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours, bool one_piece) const;
 
   /** Replaces, on a noisy rim, the fill's copy of the normals within
     * kNoisyRimReachInPitches of the rim by PCA over more neighbours

@@ -5,12 +5,14 @@
  * The pcl_holefill command, run as a user would run it.
  */
 #include "hole_pictures.h"
+#include "normal_estimation.h"
 #include "render.h"
 #include "shapes.h"
 
 #include <pcl_holefill/hole_filling.h>
 
 #include <pcl/common/io.h>
+#include <pcl/search/kdtree.h>
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -23,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <random>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -652,4 +655,60 @@ TEST (Render, EachHoleGetsAMarkedRimAndACloseUp)
   reports[1].closed = false;
   const auto marked = pcl_holefill_tool::holePicture (output, kept->size (), reports);
   EXPECT_GT (pixelsOfHue (marked, HoleColours::openRim ()), 1000u);
+}
+
+/** The noise that noiseInPitches reads off \a cloud's positions (every point). */
+static float
+measuredNoise (const shapes::Cloud &cloud)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::copyPointCloud (cloud, *xyz);
+  pcl::search::KdTree<pcl::PointXYZ> tree;
+  tree.setInputCloud (xyz);
+  return pcl_holefill_tool::noiseInPitches (tree, 64, cloud.size ());
+}
+
+/** \a n uniformly random samples of the square [0,1]^2 at z = 0.5, normal +z. */
+static shapes::Cloud
+randomSquare (std::size_t n, unsigned seed)
+{
+  std::mt19937 random (seed);
+  std::uniform_real_distribution<float> unit (0.f, 1.f);
+  shapes::Cloud cloud;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    pcl::PointNormal p;
+    p.getVector3fMap () = Eigen::Vector3f (unit (random), unit (random), 0.5f);
+    p.getNormalVector3fMap () = Eigen::Vector3f::UnitZ ();
+    cloud.push_back (p);
+  }
+  return cloud;
+}
+
+TEST (NormalEstimation, TheNoiseIsReadInPitchesAndSetsTheNeighbours)
+{
+  // Ground truth: the noise added along the normal, over the pitch of a
+  // unit square (sqrt(1 / n)); two samplers, four noise levels. Reached
+  // (64 neighbours): 0.95-0.98 of it up to half a pitch, 0.91-0.92 at one
+  // pitch, 0.82-0.83 at 1.5 (the neighbourhood's radius is 4.5 pitches).
+  constexpr std::size_t n = 20000;
+  const double pitch = std::sqrt (1.0 / n);
+  for (const bool random : {false, true})
+    for (const double in_pitches : {0.25, 0.5, 1.0, 1.5})
+    {
+      shapes::Cloud cloud = random ? randomSquare (n, 3) : shapes::flatPatch ().sample (n);
+      shapes::addNormalNoise (cloud, in_pitches * pitch);
+      const float measured = measuredNoise (cloud);
+      EXPECT_GT (measured, (in_pitches <= 0.5 ? 0.9 : 0.75) * in_pitches) << (random ? "random" : "jittered");
+      EXPECT_LT (measured, 1.05 * in_pitches) << (random ? "random" : "jittered");
+    }
+  // Clean: a flat square and a sphere 40 pitches in radius read (almost) no
+  // noise, and keep PCL's 16 neighbours.
+  EXPECT_LT (measuredNoise (randomSquare (n, 4)), 0.02f);
+  const float sphere = measuredNoise (shapes::sphere ().sample (n));
+  EXPECT_LT (sphere, 0.1f);
+  EXPECT_EQ (pcl_holefill_tool::normalNeighboursForNoise (sphere), 16);
+  EXPECT_EQ (pcl_holefill_tool::normalNeighboursForNoise (0.3f), 16);
+  EXPECT_EQ (pcl_holefill_tool::normalNeighboursForNoise (1.f), 64);
+  EXPECT_EQ (pcl_holefill_tool::normalNeighboursForNoise (10.f), 128);
 }

@@ -214,7 +214,7 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
   prepared.normals_unusable = has_normals && usable_normals < kMinUsableNormalShare * prepared.finite_points;
   prepared.normals_estimated = !has_normals || prepared.normals_unusable;
   if (prepared.normals_estimated)
-    estimateOrientedNormals (*prepared.points, threads);
+    prepared.normal_neighbours = estimateOrientedNormals (*prepared.points, threads);
   if (!has_normals && !addNormalFields (prepared, error))
     return false;
   prepared.points->width = static_cast<std::uint32_t> (prepared.points->size ());

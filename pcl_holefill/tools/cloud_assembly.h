@@ -25,11 +25,13 @@ struct PreparedCloud
   Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
   bool normals_estimated = false;                          //!< points carry estimated normals
   bool normals_unusable = false;                           //!< the file had normals, mostly zero or not finite
+  int normal_neighbours = 0;                               //!< k of the estimated normals (0: not estimated)
   std::size_t finite_points = 0;
 };
 
-/** \brief Checks the file's fields, takes its normals or estimates them (PCL
-  * NormalEstimationOMP, k = 16, then consistently oriented). */
+/** \brief Checks the file's fields, takes its normals or estimates them
+  * (estimateOrientedNormals: PCL NormalEstimationOMP, k = 16 or more on
+  * noisy clouds, then consistently oriented). */
 bool
 prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
               std::string &error);

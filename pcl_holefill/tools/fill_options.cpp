@@ -78,9 +78,9 @@ usage (const char *program)
       << "'filled' = 1 (0 for input points) and the other fields of their nearest input point.\n"
       << "Text clouds (.xyz, .pts, .txt): x y z per line, then normals and other columns if\n"
       << "any (space, tab or comma separated; '#' comments and a point-count line skipped).\n"
-      << "A cloud without normals gets them estimated (k = 16) and oriented. Lengths are in the\n"
-      << "cloud's units; 0 means derived from the nearest-neighbour spacing h or the sampling\n"
-      << "pitch p (sqrt(area per point)) around each hole.\n\n"
+      << "A cloud without normals gets them estimated (k = 16, more if noisy) and oriented.\n"
+      << "Lengths are in the cloud's units; 0 means derived from the nearest-neighbour spacing\n"
+      << "h or the sampling pitch p (sqrt(area per point)) around each hole.\n\n"
       << "Options:\n"
       << parameterUsage (P::kRadius, "R") << parameterUsage (P::kSigmaN, "S|auto|sup")
       << "                    (auto = 0: 2 x the spread of the rim's normals, within 0.1..0.3;\n"

@@ -6,14 +6,29 @@
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
 
 namespace pcl_holefill_tool
 {
 /** \brief Normals for a cloud that has none, as the command and the Python
-  * module give them: PCL NormalEstimationOMP (k = 16 nearest neighbours),
-  * then consistently oriented (pcl_holefill::orientNormalsConsistently).
-  * Non-finite points get NaN normals. */
-void
+  * module give them: PCL NormalEstimationOMP over k = 16 nearest neighbours,
+  * or more on a noisy cloud (normalNeighboursForNoise of the noise that the
+  * first pass measures), then consistently oriented
+  * (pcl_holefill::orientNormalsConsistently). Non-finite points get NaN
+  * normals. Returns the k used. */
+int
 estimateOrientedNormals (pcl::PointCloud<pcl::PointNormal> &cloud, unsigned int threads);
+
+/** The noise of a cloud across its surface, in sampling pitches (sqrt of
+  * the area per point): PCA over the \a k nearest neighbours of about
+  * \a samples points spread over the cloud that \a search holds, the median
+  * of the noise their scatter shows; 0 when no point has k neighbours. */
+float
+noiseInPitches (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples);
+
+/** The neighbours of PCA normals for a cloud of this noise (in pitches):
+  * PCL's usual 16 up to 0.375 pitch, then 64 per pitch, at most 128. */
+int
+normalNeighboursForNoise (float noise_in_pitches);
 
 }  // namespace pcl_holefill_tool

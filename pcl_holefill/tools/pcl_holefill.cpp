@@ -111,9 +111,11 @@ run (const Options &options)
                   prepared.points->size (), prepared.finite_points);
     if (prepared.normals_unusable)
       std::fprintf (stderr, "pcl_holefill: note: most normals in the input are zero or not finite: estimated "
-                            "(k = 16) and oriented for the fill; the input rows keep theirs\n");
+                            "(k = %d) and oriented for the fill; the input rows keep theirs\n",
+                    prepared.normal_neighbours);
     else if (prepared.normals_estimated)
-      std::fprintf (stderr, "pcl_holefill: note: no normals in the input: estimated (k = 16) and oriented\n");
+      std::fprintf (stderr, "pcl_holefill: note: no normals in the input: estimated (k = %d) and oriented\n",
+                    prepared.normal_neighbours);
   }
 
   if (options.detect_only)

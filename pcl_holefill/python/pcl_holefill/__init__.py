@@ -221,7 +221,8 @@ Args:
              skipped. float64 rows are computed in a frame centred on the cloud, so
              large (georeferenced) coordinates keep their precision.
     normals: (N, 3) array of unit normals, or None to estimate them (PCA over 16
-             neighbours, consistently oriented), as the command does.
+             neighbours, more on noisy clouds; consistently oriented), as the
+             command does.
     holes:   None to detect the holes, or a list of integer arrays, each the input
              indices around one hole, in order (the command's -holes).
     extra:   optional (N, k) array of per-point columns (colour, intensity, ...): filled

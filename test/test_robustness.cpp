@@ -413,7 +413,9 @@ TEST (SmoothRimEstimatedNormals, CapsStayRound)
     const double sigma = noise * corpus::diagonal (c.shape);
     EXPECT_TRUE (o.fill.kept_unchanged) << corpus::toString (kSamplings[s]);
     EXPECT_GE (o.fill.coverage, 0.98) << corpus::toString (kSamplings[s]);         // reached: 99.8 % to 100 %
-    EXPECT_LE (o.fill.max_error, 3.0 * sigma) << corpus::toString (kSamplings[s]);  // reached: 1.1 to 2.2 sigma (2.4 to 5.2 before the quadric took more neighbours)
+    // reached: 0.63 to 0.92 sigma (1.1 to 2.2 before the quadric ran on smoothed rims over up to 768
+    // neighbours, 2.4 to 5.2 before it took more than 24)
+    EXPECT_LE (o.fill.max_error, 1.5 * sigma) << corpus::toString (kSamplings[s]);
   }
 }
 

@@ -360,7 +360,7 @@ def test_a_large_noisy_hole_from_estimated_normals_on_dense_random_samples(seed)
     # The same cap on 100,000 uniformly random samples at 0.1 % noise (0.3
     # pitch), normals estimated by the module: 0.030-0.033 off and 55-69 %
     # covered before; the quadric needed ~1,600 neighbours per unit of noise
-    # (noise / spacing), here 768: 384 left 0.007-0.013 and 95-100 %.
+    # (noise / spacing), here 768: 384 left 0.008-0.010 and 98-100 %.
     # Reached over seeds 1-8: 0.0031-0.0070, 100 % covered.
     n = 100000
     points, normals = sphere_samples(n, seed)
@@ -378,7 +378,7 @@ def test_a_hole_in_a_cloud_noisier_than_its_pitch_is_found():
     # 16 neighbours scatters the normals by 25 degrees, the orientation walk
     # left 1.2 % of them flipped, and the cap 0.3 in radius was found on one
     # seed of six. The module now measures the noise (PCA over 64 neighbours
-    # of 2,000 points) and estimates the normals over 64 per pitch of it (59
+    # of 2,000 points) and estimates the normals over 64 per pitch of it (56
     # here). Reached, seeds 1-3: found every time, max error 0.011-0.017
     # (3 sigma is 0.016), 90-97 % covered.
     n = 100000

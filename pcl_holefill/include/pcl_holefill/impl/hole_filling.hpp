@@ -146,10 +146,11 @@ constexpr int kMaxWideNeighbours = 192;
 // many neighbours per unit of noise (noise / spacing), at most
 // kMaxSmoothRimQuadricNeighbours. A large hole amplifies what is left of
 // the tilt: a cap 110 pitches across cut from 100,000 random sphere samples
-// at 0.1 % noise, PCA normals, four seeds: 192 neighbours 0.018-0.39 max
-// error (a front ran off), 384 0.007-0.013 and 95-100 % covered, 768
-// 0.003-0.005 and 100 %; at 0.3 % on 50,000 samples (capped at 768)
-// 0.007-0.009, 100 %. Corpus: sums of max errors at 0.1 / 0.3 / 0.5 %
+// at 0.1 % noise, PCA normals, four seeds: with the crease test, 192
+// neighbours 0.018-0.39 max error (a front ran off), 384 0.007-0.013 and
+// 95-100 % covered; without it, 384 0.008-0.010 and 98-100 %, 768 (this
+// rule) 0.003-0.005 and 100 %; at 0.3 % on 50,000 samples (capped at 768)
+// 0.007-0.012, >= 99.8 %. Corpus: sums of max errors at 0.1 / 0.3 / 0.5 %
 // 0.358 / 0.905 / 1.664 -> 0.354 / 0.881 / 1.640, no coverage changed; the
 // fin at 0.1 % with estimated normals 0.0011 -> 0.0029 (varying density).
 constexpr float kSmoothRimQuadricNeighboursPerNoise = 1600.f;

@@ -355,6 +355,17 @@ def test_a_large_noisy_cap_from_estimated_normals_stays_on_the_sphere(noise, bou
     check_noisy_cap_on_poisson_disk_samples(noise, 0.3, bound)
 
 
+def noisy_dense_cap(seed, noise):
+    """A cap 0.3 in radius cut from 100,000 uniformly random sphere samples,
+    moved along the normal by noise (share of the diagonal; noise seed 100 +
+    seed): (moved points, their exact normals, removed samples, pitch)."""
+    n = 100000
+    points, normals = sphere_samples(n, seed)
+    kept, kept_normals, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.3)])
+    moved = kept + kept_normals * np.random.default_rng(100 + seed).normal(size=(len(kept), 1)) * noise * np.sqrt(3)
+    return moved, kept_normals, removed, np.sqrt(np.pi / n)
+
+
 @pytest.mark.parametrize("seed", [1, 2])
 def test_a_large_noisy_hole_from_estimated_normals_on_dense_random_samples(seed):
     # The same cap on 100,000 uniformly random samples at 0.1 % noise (0.3
@@ -362,14 +373,10 @@ def test_a_large_noisy_hole_from_estimated_normals_on_dense_random_samples(seed)
     # covered before; the quadric needed ~1,600 neighbours per unit of noise
     # (noise / spacing), here 768: 384 left 0.008-0.010 and 98-100 %.
     # Reached over seeds 1-8: 0.0031-0.0070, 100 % covered.
-    n = 100000
-    points, normals = sphere_samples(n, seed)
-    kept, kept_normals, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.3)])
-    moved = kept + kept_normals * np.random.default_rng(100 + seed).normal(size=(len(kept), 1)) * 0.001 * np.sqrt(3)
+    moved, _, removed, spacing = noisy_dense_cap(seed, 0.001)
     res = pcl_holefill.fill(moved, quiet=True)
     assert np.array_equal(res.points[:len(moved)], moved)
     assert sphere_distance(res.points[res.filled]).max() < 0.006
-    spacing = np.sqrt(np.pi / n)
     assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.99
 
 
@@ -381,17 +388,13 @@ def test_a_hole_in_a_cloud_noisier_than_its_pitch_is_found():
     # of 2,000 points) and estimates the normals over 64 per pitch of it (56
     # here). Reached, seeds 1-3: found every time, max error 0.011-0.017
     # (3 sigma is 0.016), 90-97 % covered.
-    n = 100000
-    points, normals = sphere_samples(n, 1)
-    kept, kept_normals, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.3)])
-    moved = kept + kept_normals * np.random.default_rng(101).normal(size=(len(kept), 1)) * 0.003 * np.sqrt(3)
+    moved, _, removed, spacing = noisy_dense_cap(1, 0.003)
     loops = pcl_holefill.detect_holes(moved)
     assert len(loops) == 1
     assert np.linalg.norm(moved[loops[0]] - [0.5, 0.5, 1.0], axis=1).max() < 0.3 + 0.02
     res = pcl_holefill.fill(moved, quiet=True)
     assert np.array_equal(res.points[:len(moved)], moved)
     assert sphere_distance(res.points[res.filled]).max() < 0.022
-    spacing = np.sqrt(np.pi / n)
     assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.93
 
 
@@ -402,18 +405,13 @@ def test_a_large_noisy_hole_is_found_whole():
     # was neither reported nor filled. Open pieces continuing each other
     # across up to 2 links are now joined. Reached, exact normals: one
     # closed hole, 100 % covered, max error 0.0016. (With normals estimated
-    # from the noisy points the same hole is found too, but only 69 % is
-    # covered: the fill rides up to 0.03 above the cap.)
-    n = 100000
-    points, normals = sphere_samples(n, 1)
-    kept, kept_normals, removed = cut(points, normals, [((0.5, 0.5, 1.0), 0.3)])
-    moved = kept + kept_normals * np.random.default_rng(101).normal(size=(len(kept), 1)) * 0.001 * np.sqrt(3)
+    # from the noisy points: the test on dense random samples above.)
+    moved, kept_normals, removed, spacing = noisy_dense_cap(1, 0.001)
     assert len(pcl_holefill.detect_holes(moved)) == 1
     res = pcl_holefill.fill(moved, kept_normals, quiet=True)
     assert len(res.reports) == 1 and res.reports[0]["closed"]
     assert np.array_equal(res.points[:len(moved)], moved)
     assert sphere_distance(res.points[res.filled]).max() < 0.003
-    spacing = np.sqrt(np.pi / n)
     assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.99
 
 

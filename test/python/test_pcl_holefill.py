@@ -366,6 +366,15 @@ def noisy_dense_cap(seed, noise):
     return moved, kept_normals, removed, np.sqrt(np.pi / n)
 
 
+def assert_sphere_fill(res, moved, removed, spacing, bound, covered):
+    """The input rows untouched, every filled point within bound of the
+    sphere, and at least the share covered of the removed samples within 1.5
+    spacings of an output point."""
+    assert np.array_equal(res.points[:len(moved)], moved)
+    assert sphere_distance(res.points[res.filled]).max() < bound
+    assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= covered
+
+
 @pytest.mark.parametrize("seed", [1, 2])
 def test_a_large_noisy_hole_from_estimated_normals_on_dense_random_samples(seed):
     # The same cap on 100,000 uniformly random samples at 0.1 % noise (0.3
@@ -374,10 +383,7 @@ def test_a_large_noisy_hole_from_estimated_normals_on_dense_random_samples(seed)
     # (noise / spacing), here 768: 384 left 0.008-0.010 and 98-100 %.
     # Reached over seeds 1-8: 0.0031-0.0070, 100 % covered.
     moved, _, removed, spacing = noisy_dense_cap(seed, 0.001)
-    res = pcl_holefill.fill(moved, quiet=True)
-    assert np.array_equal(res.points[:len(moved)], moved)
-    assert sphere_distance(res.points[res.filled]).max() < 0.006
-    assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.99
+    assert_sphere_fill(pcl_holefill.fill(moved, quiet=True), moved, removed, spacing, 0.006, 0.99)
 
 
 def test_a_hole_in_a_cloud_noisier_than_its_pitch_is_found():
@@ -392,10 +398,7 @@ def test_a_hole_in_a_cloud_noisier_than_its_pitch_is_found():
     loops = pcl_holefill.detect_holes(moved)
     assert len(loops) == 1
     assert np.linalg.norm(moved[loops[0]] - [0.5, 0.5, 1.0], axis=1).max() < 0.3 + 0.02
-    res = pcl_holefill.fill(moved, quiet=True)
-    assert np.array_equal(res.points[:len(moved)], moved)
-    assert sphere_distance(res.points[res.filled]).max() < 0.022
-    assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.93
+    assert_sphere_fill(pcl_holefill.fill(moved, quiet=True), moved, removed, spacing, 0.022, 0.93)
 
 
 def test_a_large_noisy_hole_is_found_whole():
@@ -410,9 +413,7 @@ def test_a_large_noisy_hole_is_found_whole():
     assert len(pcl_holefill.detect_holes(moved)) == 1
     res = pcl_holefill.fill(moved, kept_normals, quiet=True)
     assert len(res.reports) == 1 and res.reports[0]["closed"]
-    assert np.array_equal(res.points[:len(moved)], moved)
-    assert sphere_distance(res.points[res.filled]).max() < 0.003
-    assert (gap(removed, res.points, 2 * spacing) <= 1.5 * spacing).mean() >= 0.99
+    assert_sphere_fill(res, moved, removed, spacing, 0.003, 0.99)
 
 
 def test_extra_columns_come_back_for_the_filled_points(corner):

@@ -45,19 +45,27 @@ constexpr float kDiscLeanMargin = 0.17f;
 bool
 emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
-                  float diameter, float test_radius)
+                  float diameter, float test_radius, bool unfold)
 {
   const float radius = 0.5f * diameter;
   thread_local std::vector<Eigen::Vector2f> flat;
   flat.clear ();
-  const Eigen::Vector3f e1 = gap.direction;
+  // The gap's direction is tangent to the point's own plane; another plane
+  // gets its projection.
+  const Eigen::Vector3f along_gap =
+      unfold ? gap.direction : Eigen::Vector3f (gap.direction - gap.direction.dot (unit_normal) * unit_normal);
+  if (!(along_gap.squaredNorm () > 1e-6f))
+    return false;  // the gap lies across the plane: no disc in it
+  const Eigen::Vector3f e1 = unfold ? along_gap : along_gap.normalized ();
   const Eigen::Vector3f e2 = unit_normal.cross (e1);
   for (int k = 0; k < count; ++k)
   {
     const int j = ids[k];
     if (unit_normals[j].dot (unit_normal) < kOtherSideCosine)
       continue;
-    const Eigen::Vector3f u = unfoldIntoTangentPlane (positions[j] - point, unit_normal, unit_normals[j]);
+    const Eigen::Vector3f offset = positions[j] - point;
+    const Eigen::Vector3f u = unfold ? unfoldIntoTangentPlane (offset, unit_normal, unit_normals[j])
+                                     : Eigen::Vector3f (offset - offset.dot (unit_normal) * unit_normal);
     flat.emplace_back (u.dot (e1), u.dot (e2));
   }
   const float max_lean = std::max (0.f, 0.5f * gap.angle - kDiscLeanMargin);

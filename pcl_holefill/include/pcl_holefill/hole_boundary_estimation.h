@@ -230,6 +230,11 @@ private:
   bool
   emptyDiscTouches (int local, const detail::AngularGap &gap, float diameter, float pitch) const;
 
+  /** The normal the loop tracing uses for rim point \a local (its own, or
+    * its neighbours' mean when it turned far from all of theirs). */
+  Eigen::Vector3f
+  tracingNormal (int local) const;
+
   /** Usable points within \a radius of usable point \a local, as local ids. */
   void
   usableWithin (int local, float radius, std::vector<int> &ids) const;

@@ -96,11 +96,16 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   * are not surface next to the point and are ignored. The disc is tried along
   * the gap's bisector and leaning within the gap by up to 45 degrees; a
   * neighbour closer than \a test_radius (at most diameter / 2: the margin a
-  * ragged rim needs) to its centre fills it. */
+  * ragged rim needs) to its centre fills it.
+  *
+  * With \a unfold false the neighbours are projected straight onto the
+  * plane normal to \a unit_normal (which then need not be the point's own
+  * normal; the gap's direction is projected onto that plane too): the view
+  * that does not trust the neighbours' normals. */
 bool
 emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
-                  float diameter, float test_radius);
+                  float diameter, float test_radius, bool unfold = true);
 
 /** \brief The widest sector, seen from \a position in the plane normal to
   * \a normal, that holds none of the \a rim points (radians, 0..2 pi;

@@ -214,6 +214,44 @@ def test_a_noisy_edge_with_exact_normals_stays_on_its_faces(noise, bound):
         assert (gap(removed, res.points) <= 1.5 * pitch(6.0)).mean() >= 0.99, seed
 
 
+def ridge_samples(n, seed):
+    """Uniformly random samples of a 90 degree ridge, z = 0.5 + y up to
+    y = 0.5 and 1.5 - y beyond (x, y in [0, 1]), exact normals."""
+    rng = np.random.default_rng(seed)
+    x, y = rng.random(n), rng.random(n)
+    points = np.c_[x, y, np.where(y < 0.5, 0.5 + y, 1.5 - y)]
+    normals = np.where((y < 0.5)[:, None], [0.0, -1.0, 1.0], [0.0, 1.0, 1.0]) / np.sqrt(2)
+    return points, normals
+
+
+def test_holes_in_noisy_random_samples_are_found_from_pca_normals():
+    # Noise 0.5 % of the diagonal (0.7 pitch), normals by Open3D's PCA
+    # (k = 16) oriented as the true ones: at a rim they tilt by up to
+    # 1.4 rad. The empty-disc test unfolded the neighbours along those normals
+    # into the disc, and the loop tracing would not link rim points whose
+    # normals came out more than 120 degrees apart (a ridge hole stayed two
+    # open halves). Three holes (on the ridge, on each face) over five seeds:
+    # 9 of 15 found before, 14 now; none where no hole was cut.
+    import open3d as o3d
+    balls = [((0.5, 0.5, 1.0), 0.07), ((0.3, 0.25, 0.75), 0.05), ((0.7, 0.78, 0.72), 0.06)]
+    found = 0
+    for seed in (1, 2, 3, 4, 5):
+        points, normals = ridge_samples(25000, seed)
+        kept, kept_normals, _ = cut(points, normals, balls)
+        moved = kept + kept_normals * np.random.default_rng(seed + 100).normal(
+            size=(len(kept), 1)) * 0.005 * np.sqrt(3)
+        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(moved))
+        cloud.estimate_normals(o3d.geometry.KDTreeSearchParamKNN(16))
+        pca = np.asarray(cloud.normals)
+        pca *= np.sign((pca * kept_normals).sum(axis=1))[:, None]
+        loops = pcl_holefill.detect_holes(moved, pca)
+        near = [[np.linalg.norm(moved[loop].mean(axis=0) - np.asarray(c)) < r + 0.03 for c, r in balls]
+                for loop in loops]
+        assert all(any(n) for n in near), seed  # no hole where none was cut
+        found += sum(any(n[b] for n in near) for b in range(len(balls)))
+    assert found >= 14  # reached: 14 of 15 (one missed on seed 5); 9 on 0455018
+
+
 def test_noisy_random_samples_without_a_hole_come_back_unchanged():
     points, normals = sphere_samples(SAMPLES, 13)
     moved, _ = noisy(points, normals, 0.003, 14)

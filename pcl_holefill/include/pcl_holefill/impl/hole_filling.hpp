@@ -30,7 +30,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 
 namespace pcl_holefill
 {
@@ -620,17 +619,22 @@ HoleFilling<PointT>::fillHoles (const PointCloud &working, pcl::search::Search<P
   // Holes side by side; a single hole gets the threads itself (its
   // candidates are placed side by side within each pass).
   const int threads = static_cast<int> (detail::resolveThreadCount (threads_));
-  const int per_hole = holes.size () == 1 ? threads : 1;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (holes.size () > 1)
-  for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
-  {
-    fillHole (working, search, holes[h], fills[h], reports_[h], per_hole);
+  const auto fill_one = [&] (std::size_t h, int threads_of_hole) {
+    fillHole (working, search, holes[h], fills[h], reports_[h], threads_of_hole);
     reports_[h].points_added = fills[h].size ();
     if (progress_)
     {
 #pragma omp critical(pcl_holefill_progress)
-      progress_ (static_cast<std::size_t> (h), holes.size (), reports_[h]);
+      progress_ (h, holes.size (), reports_[h]);
     }
+  };
+  if (holes.size () == 1)
+    fill_one (0, threads);  // outside any parallel region: its own regions reuse the thread pool
+  else
+  {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::ptrdiff_t h = 0; h < static_cast<std::ptrdiff_t> (holes.size ()); ++h)
+      fill_one (static_cast<std::size_t> (h), 1);
   }
   std::size_t next = working.size ();
   for (std::size_t h = 0; h < holes.size (); ++h)
@@ -779,22 +783,22 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
   std::vector<float> sqr_distances;
   search.radiusSearch (centre, scale.bound + scale.radius, found, sqr_distances);
   std::sort (found.begin (), found.end ());  // a deterministic order, whatever the search
-  std::unordered_map<int, int> local_index;
-  for (const auto i : found)
-  {
-    local_index[i] = static_cast<int> (surroundings.cloud->size ());
-    surroundings.cloud->push_back (working[i]);
-  }
+  // The local index of found[k] is k: the sorted list itself maps cloud
+  // indices to local ones.
+  surroundings.cloud->resize (found.size ());
+  for (std::size_t k = 0; k < found.size (); ++k)
+    (*surroundings.cloud)[k] = working[found[k]];
   surroundings.input_points = surroundings.cloud->size ();
   surroundings.rim.clear ();
   for (const auto i : rim)
   {
-    const auto it = local_index.find (i);
-    if (it != local_index.end ())
-      surroundings.rim.push_back (it->second);
+    const auto it = std::lower_bound (found.begin (), found.end (), i);
+    if (it != found.end () && *it == i)
+      surroundings.rim.push_back (static_cast<int> (it - found.begin ()));
   }
   surroundings.search.reset (new VoxelHashSearch<PointT>);
   surroundings.search->setCellSize (scale.radius);  // a radius-r query then reads a 3x3x3 block
+  surroundings.search->setNumberOfThreads (surroundings.threads);
   surroundings.search->setInputCloud (surroundings.cloud);
 }
 
@@ -1400,8 +1404,8 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   // 2. The surroundings; the fill's copy of their normals refitted where
   // the hole or the noise biases them (beyond the paper); the sampler.
   Surroundings surroundings;
-  gatherSurroundings (working, search, rim, scale, surroundings);
   surroundings.threads = threads;
+  gatherSurroundings (working, search, rim, scale, surroundings);
   report.noise = detail::measureRimNoise (*surroundings.cloud, *surroundings.search, surroundings.rim,
                                           detail::kNoiseReachInSpacings * scale.spacing);
   report.refitted_normals = refitNormals (surroundings, scale, report.noise);

@@ -34,7 +34,8 @@ constexpr float kMaxTracingNormalCosine = 0.f;
 // The empty-disc test looks again without unfolding where the median
 // neighbour's normal turns more than 0.25 rad from the point's: PCA normals
 // of noisy points (0.3-0.5 rad apart at 0.5 % noise); exact normals of a
-// smooth or creased surface stay below, and there the unfolded view stands.
+// smooth surface stay below, and so do most next to a crease (the plain view
+// can only add a rim point the unfolded one refused).
 const float kMinPlainViewNormalCosine = std::cos (0.25f);
 }  // namespace detail
 

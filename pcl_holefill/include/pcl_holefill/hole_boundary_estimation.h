@@ -171,6 +171,7 @@ private:
     int local;        //!< usable point
     detail::AngularGap gap;   //!< its widest empty sector
     float spacing;    //!< distance to its nearest distinct neighbour
+    Eigen::Vector3f walk_normal = Eigen::Vector3f::Zero ();  //!< the loop tracing's normal (tracingNormal)
   };
 
   /** Validates parameters and input, builds the neighbour search over the
@@ -202,7 +203,8 @@ private:
   findRimPoints (std::vector<float> &pitch_of);
 
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
-    * size touches; the others border gaps of the sampling. */
+    * size touches; the others border gaps of the sampling. Sets the kept
+    * points' walk_normal from the same neighbours. */
   void
   keepHoleSizedGaps (std::vector<RimPoint> &rim_points, const std::vector<float> &pitch_of) const;
 
@@ -230,10 +232,11 @@ private:
   bool
   emptyDiscTouches (int local, const detail::AngularGap &gap, float diameter, float pitch) const;
 
-  /** The normal the loop tracing uses for rim point \a local (its own, or
-    * its neighbours' mean when it turned far from all of theirs). */
+  /** The normal the loop tracing uses for rim point \a local, given its
+    * nearest neighbours \a ids: its own, or their mean normal when its own
+    * turned far from all of theirs. */
   Eigen::Vector3f
-  tracingNormal (int local) const;
+  tracingNormal (int local, const std::vector<int> &ids) const;
 
   /** Usable points within \a radius of usable point \a local, as local ids. */
   void

@@ -250,20 +250,19 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   // plane fitted to the disc's neighbourhood. At 0.5 % noise with PCA normals
   // that found 24 of 26 rim points of a smooth hole where the unfolding found
   // 14, and left the rim of a hole at a corner to the unfolding.
-  thread_local std::vector<Eigen::Vector3f> around;
+  if (count < 3)
+    return false;
   thread_local std::vector<float> turns;
-  around.clear ();
   turns.clear ();
   for (const int j : ids)
-  {
-    around.push_back (positions_[j]);
     turns.push_back (normals_[j].dot (normals_[local]));
-  }
-  if (around.size () < 3)
-    return false;
-  std::nth_element (turns.begin (), turns.begin () + turns.size () / 2, turns.end ());
-  if (turns[turns.size () / 2] > detail::kMinPlainViewNormalCosine)
+  std::nth_element (turns.begin (), turns.begin () + count / 2, turns.end ());
+  if (turns[count / 2] > detail::kMinPlainViewNormalCosine)
     return false;  // the neighbours' normals agree with the point's: the unfolding saw right
+  thread_local std::vector<Eigen::Vector3f> around;
+  around.clear ();
+  for (const int j : ids)
+    around.push_back (positions_[j]);
   Eigen::Vector3f plane = detail::fitPlane (around.data (), count).normal;
   if (!plane.allFinite ())
     return false;
@@ -274,7 +273,7 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
 }
 
 template <typename PointT> Eigen::Vector3f
-HoleBoundaryEstimation<PointT>::tracingNormal (int local) const
+HoleBoundaryEstimation<PointT>::tracingNormal (int local, const std::vector<int> &ids) const
 {
   // The walk links rim points whose normals agree (not across a thin part)
   // and steps along n x gap. A normal that turned far from all of its
@@ -282,9 +281,6 @@ HoleBoundaryEstimation<PointT>::tracingNormal (int local) const
   // ridge, oriented, came out 137 degrees from the next rim point's, and the
   // two halves of a hole across the ridge stayed apart. Such a point walks
   // with its neighbours' mean normal.
-  thread_local std::vector<int> ids;
-  thread_local std::vector<float> d2;
-  nearestUsable (static_cast<std::size_t> (local), k_, ids, d2);
   Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
   for (const int j : ids)
     mean += normals_[j];
@@ -403,6 +399,8 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (std::vector<RimPoint> &rim_po
     pitch /= static_cast<float> (ids.size () + 1);
     const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
     keep[r] = emptyDiscTouches (local, rim_points[r].gap, diameter, pitch) ? 1 : 0;
+    if (keep[r])
+      rim_points[r].walk_normal = tracingNormal (local, ids);
   }
   std::size_t kept = 0;
   for (std::size_t r = 0; r < rim_points.size (); ++r)
@@ -455,7 +453,7 @@ HoleBoundaryEstimation<PointT>::compute (std::vector<BoundaryLoop> &loops)
     rim_spacing_.push_back ({r.local, r.spacing});
     flags_[(*usable_)[r.local]] = 1;
     rim_positions.push_back (positions_[r.local]);
-    rim_normals.push_back (tracingNormal (r.local));
+    rim_normals.push_back (r.walk_normal);
     rim_gaps.push_back (r.gap.direction);
   }
   // 2. Chain the rim points into loops; 3. refine, measure and classify each.

@@ -186,6 +186,92 @@ addNormalFields (PreparedCloud &prepared, std::string &error)
   prepared.fields = merged;
   return true;
 }
+/** Where the input points near a hole's fill lie: the box of its filled and
+  * rim points, widened so that a filled point's nearest input point (no
+  * farther than the rim, at most the box's size away) lies inside it. */
+struct HoleBox
+{
+  Eigen::AlignedBox3f box;
+  std::size_t first = 0, count = 0;  //!< the hole's filled points: filtered[first, first + count)
+};
+
+std::vector<HoleBox>
+holeBoxes (const pcl::PointCloud<pcl::PointNormal> &filtered, const std::vector<pcl_holefill::HoleReport> &reports)
+{
+  std::vector<HoleBox> boxes;
+  for (const auto &r : reports)
+  {
+    if (r.points_added == 0 || r.first_output_index + r.points_added > filtered.size ())
+      continue;
+    HoleBox hole{Eigen::AlignedBox3f (), r.first_output_index, r.points_added};
+    for (std::size_t k = hole.first; k < hole.first + hole.count; ++k)
+      hole.box.extend (filtered[k].getVector3fMap ());
+    for (const auto i : r.boundary)
+      if (i >= 0 && static_cast<std::size_t> (i) < filtered.size ())
+        hole.box.extend (filtered[i].getVector3fMap ());
+    const float margin = 0.5f * hole.box.sizes ().maxCoeff () + 2.f * r.pitch;
+    hole.box.min ().array () -= margin;
+    hole.box.max ().array () += margin;
+    boxes.push_back (hole);
+  }
+  return boxes;
+}
+
+/** Distance from \a p (inside \a box) to the nearest face of it. */
+float
+depthInside (const Eigen::AlignedBox3f &box, const Eigen::Vector3f &p)
+{
+  return std::min ((p - box.min ()).minCoeff (), (box.max () - p).minCoeff ());
+}
+
+/** For each filled point of \a filtered (the input, then the fill), the index
+  * of its nearest input point. */
+std::vector<int>
+nearestInputPoints (const pcl::PointCloud<pcl::PointNormal>::ConstPtr &cloud, const pcl::PointCloud<pcl::PointNormal> &filtered,
+                    const std::vector<pcl_holefill::HoleReport> &reports)
+{
+  // A k-d tree, because a filled point's nearest input point is up to a
+  // hole's radius away: a grid tuned to the sampling pitch would scan the
+  // whole cloud for every point deep in a large hole (24 s for 21,000 filled
+  // points in 225,000). Built on the input points in the holes' boxes, not
+  // on the whole cloud (0.35 of 1.8 s on 1,000,000 points with 10 holes);
+  // a query whose answer could lie outside its box goes to a tree of all.
+  const pcl::PointCloud<pcl::PointNormal> &input = *cloud;
+  const std::size_t input_points = input.size ();
+  const std::vector<HoleBox> boxes = holeBoxes (filtered, reports);
+  pcl::IndicesPtr near (new pcl::Indices);
+  for (std::size_t i = 0; i < input_points; ++i)
+    if (std::any_of (boxes.begin (), boxes.end (),
+                     [&] (const HoleBox &b) { return b.box.contains (input[i].getVector3fMap ()); }))
+      near->push_back (static_cast<int> (i));
+  pcl::search::KdTree<pcl::PointNormal> local, all;
+  bool all_built = false;
+  if (!near->empty ())
+    local.setInputCloud (cloud, near);
+  std::vector<const Eigen::AlignedBox3f *> box_of (filtered.size () - input_points, nullptr);
+  for (const HoleBox &b : boxes)
+    for (std::size_t k = b.first; k < b.first + b.count && k >= input_points; ++k)
+      box_of[k - input_points] = &b.box;
+  std::vector<int> nearest (box_of.size (), 0);
+  pcl::Indices found;
+  std::vector<float> sqr_distances;
+  for (std::size_t k = 0; k < nearest.size (); ++k)
+  {
+    const pcl::PointNormal &p = filtered[input_points + k];
+    if (box_of[k] && !near->empty () && local.nearestKSearch (p, 1, found, sqr_distances) > 0 &&
+        std::sqrt (sqr_distances[0]) <= depthInside (*box_of[k], p.getVector3fMap ()))
+    {
+      nearest[k] = found[0];
+      continue;
+    }
+    if (!all_built)
+      all.setInputCloud (cloud);
+    all_built = true;
+    if (all.nearestKSearch (p, 1, found, sqr_distances) > 0)
+      nearest[k] = found[0];
+  }
+  return nearest;
+}
 }  // namespace
 
 bool
@@ -225,7 +311,7 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
 
 bool
 assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
-                pcl::PCLPointCloud2 &output, std::string &error)
+                const std::vector<pcl_holefill::HoleReport> &reports, pcl::PCLPointCloud2 &output, std::string &error)
 {
   const std::size_t input_points = prepared.points->size ();
   if (filtered.size () < input_points)
@@ -237,26 +323,18 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   const std::size_t step = rows.point_step;
   const std::size_t added = filtered.size () - input_points;
   rows.data.resize ((input_points + added) * step);
-  // Other fields of a filled point: those of its nearest input point. A
-  // k-d tree, because that point is up to a hole's radius away: a grid
-  // tuned to the sampling pitch would scan the whole cloud for every point
-  // deep in a large hole (24 s for 21,000 filled points in 225,000).
-  pcl::search::KdTree<pcl::PointNormal> search;
-  search.setInputCloud (prepared.points);
+  const std::vector<int> nearest = nearestInputPoints (prepared.points, filtered, reports);
   const pcl::PCLPointField *xyz[3], *nxyz[3];
   if (!realFields (rows, kPositionNames, xyz) || !realFields (rows, kNormalNames, nxyz))
   {
     error = "the cloud's position or normal fields are not float or double";
     return false;
   }
-  pcl::Indices nearest;
-  std::vector<float> sqr_distances;
   for (std::size_t k = 0; k < added; ++k)
   {
     const pcl::PointNormal &p = filtered[input_points + k];
     std::uint8_t *row = rows.data.data () + (input_points + k) * step;
-    if (search.nearestKSearch (p, 1, nearest, sqr_distances) > 0)
-      std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[0]) * step, step);
+    std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[k]) * step, step);
     for (int d = 0; d < 3; ++d)
     {
       storeFieldValue (static_cast<double> (p.data[d]) + prepared.origin[d], xyz[d]->datatype, row + xyz[d]->offset);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/boundary_loop.h>
+#include <pcl_holefill/hole_report.h>
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/point_cloud.h>
@@ -39,10 +40,11 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
 /** \brief The output file: the input rows unchanged, then one row per filled
   * point (its other fields copied from the nearest input point), and a
   * field "filled" (1 for filled points, 0 for the input). \a filtered is the
-  * filter's output: the input points, then the fill. */
+  * filter's output: the input points, then the fill; \a reports its reports
+  * (where each hole's filled points are, to search the input near them). */
 bool
 assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
-                pcl::PCLPointCloud2 &output, std::string &error);
+                const std::vector<pcl_holefill::HoleReport> &reports, pcl::PCLPointCloud2 &output, std::string &error);
 
 /** \brief The output of -detect_only: the input rows unchanged, with a field
   * "hole_id" (int32): the hole's number (in the order of \a loops, holes

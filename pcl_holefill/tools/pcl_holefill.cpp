@@ -149,7 +149,7 @@ run (const Options &options)
     std::fprintf (stderr, "pcl_holefill: note: no hole found: the cloud is copied through\n");
 
   pcl::PCLPointCloud2 output;
-  if (!assembleOutput (prepared, filtered, output, error))
+  if (!assembleOutput (prepared, filtered, filler.getReports (), output, error))
     return fail (error);
   if (!saveCloud (options.output, output, error))
     return fail (error);

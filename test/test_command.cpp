@@ -105,6 +105,36 @@ TEST_F (Command, FillsAPcdKeepingEveryInputPointAndMarkingTheFill)
   EXPECT_NE (json.find ("\"sigma_n\": 0.1,"), std::string::npos) << json;  // chosen: a clean, sharp rim
 }
 
+// The other fields of a filled row are its nearest input point's: checked
+// against a k-d tree of the whole input on a large cap and two small holes
+// (the command searches only the input near each hole).
+TEST_F (Command, FilledRowsTakeTheFieldsOfTheirNearestInputPoint)
+{
+  const auto cut = shapes::cutHoles (shapes::sphere ().sample (30000),
+                                     {{{0.5, 0.5, 1.0}, 0.3}, {{1.0, 0.5, 0.5}, 0.08}, {{0.5, 0.0, 0.5}, 0.06}});
+  pcl::PointCloud<pcl::PointXYZINormal> numbered;
+  pcl::copyPointCloud (cut.kept, numbered);
+  for (std::size_t i = 0; i < numbered.size (); ++i)
+    numbered[i].intensity = static_cast<float> (i);
+  ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), numbered), 0);
+  ASSERT_EQ (run (path ("in.pcd") + " " + path ("out.pcd")), 0) << stderrText ();
+  pcl::PointCloud<pcl::PointXYZINormal> out;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("out.pcd"), out), 0);
+  ASSERT_GT (out.size (), numbered.size () + 1000);
+  pcl::search::KdTree<pcl::PointXYZINormal> all;
+  all.setInputCloud (numbered.makeShared ());
+  pcl::Indices nearest (1);
+  std::vector<float> sqr_distances (1);
+  for (std::size_t i = numbered.size (); i < out.size (); ++i)
+  {
+    all.nearestKSearch (out[i], 1, nearest, sqr_distances);
+    const auto copied = static_cast<std::size_t> (out[i].intensity);
+    ASSERT_LT (copied, numbered.size ());
+    // the copied row is a nearest one (ties aside)
+    EXPECT_LE ((numbered[copied].getVector3fMap () - out[i].getVector3fMap ()).squaredNorm (), sqr_distances[0] * 1.0001f + 1e-12f);
+  }
+}
+
 TEST_F (Command, SigmaNTakesAutoANumberOrSupAndTheReportTellsWhich)
 {
   ASSERT_EQ (pcl::io::savePCDFileBinary (path ("in.pcd"), cut_.kept), 0);

@@ -279,10 +279,11 @@ private:
   static void
   encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings);
 
-  /** Has \a sampler keep new points below the rim's tangent planes when
-    * the rim is convex (ElasticSampler::setRimPlanes). */
+  /** Has \a sampler keep new points below the rim's supporting tangent
+    * planes: those of rim points that (almost) every other rim point lies
+    * below (ElasticSampler::setRimPlanes). */
   static void
-  keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+  keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                       const HoleScale &scale, const HoleReport &report);
 
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */

@@ -66,17 +66,21 @@ constexpr float kResumeMinNormalCosine = 0.4f;
 // degrees along the axis (a steep apex) and 281 along their normal (same).
 constexpr float kMaxRimGapAlongAxis = static_cast<float> (M_PI);
 constexpr float kMaxRimGapAlongNormal = static_cast<float> (200.0 * M_PI / 180.0);
-// The fill of a hole in a convex region stays below the rim's tangent
-// planes (ElasticSampler::setRimPlanes), within the constraint's tolerance
-// plus this slope (radians, plus the rim's normal spread) times the
-// distance: a face's front that reached a corner first ran on past it
-// (a corner hole 0.6 across on 100,000 random samples of a cube, exact
-// normals: max error 0.20, now 0.0043; an edge hole at 0.3 % noise: 0.097,
-// now 0.011).
+// The fill stays below the rim's supporting tangent planes
+// (ElasticSampler::setRimPlanes), within max(0.1 h, 4 sigma) plus this slope
+// (radians, plus the rim's normal spread) times the distance: a face's front
+// that reached a corner first ran on past it (a corner hole 0.6 across on
+// 100,000 random samples of a cube, exact normals: max error 0.20, now
+// 0.0043; an edge hole at 0.3 % noise: 0.097, now 0.011).
 constexpr float kRimPlaneSlope = 0.05f;
 constexpr float kRimPlaneNoiseSigmas = 4.f;
-// ... when at most this share of the rim's point pairs has one above the
-// other's plane (noise puts 0.1-0.4 % of the pairs of a cube's rim there).
+// A rim point's plane is supporting when at most this share of the other rim
+// points lies above it (noise puts 0.1-0.4 % of a cube's rim there). Taken
+// per point, so that a plane that noise or PCA tilted is left out while the
+// others bound the fill: the whole rim's share (2 % of its pairs) decided
+// all planes or none before, and noisy rims went without (spikes past
+// creases, 0.05-0.3 on noisy CAD parts with PCA normals), because their
+// tilted planes cut valid fill off (a random dihedral at 0.1 %: 100 -> 93 %).
 constexpr float kMaxRimPlaneViolations = 0.02f;
 // A hole's axis is taken when the rim's normals sum to at least this share
 // of their count (they cancel out on a rim around a thin plate's middle).
@@ -101,19 +105,6 @@ constexpr float kCreaseReachInSpacings = 6.f;
 // 0.047). Noisier rims keep their normals; the constraint's noise tolerance
 // covers their blending.
 constexpr float kRefitMaxToleranceInPitches = 0.6f;
-// The rim's tangent planes bound the fill (keepBelowConvexRim) only under
-// this: at 0.6 the fin's end above came back (0.050 -> 0.005), but noisy
-// normals along an edge tilt their planes and a random dihedral at 0.1 %
-// went 100 -> 93 % covered.
-constexpr float kRimPlaneMaxToleranceInPitches = 0.25f;
-// ... or on rims of any noise whose normals are smooth (the rim's normal
-// spread, radians; exact normals measure 0, PCA normals of noisy points
-// 0.03-0.37, smoothed ones 0.0006-0.0017): their planes are not tilted. A
-// face's front that reached an edge before the other face's ran past it:
-// random cubes at 0.3 % noise with exact normals, edge hole: 0.097 -> 0.018;
-// fast corpus: sums of max errors at 0.3 / 0.5 % 0.881 / 1.640 -> 0.819 /
-// 1.501, no coverage changed (fandisk random 0.5 % 0.077 -> 0.033).
-constexpr float kRimPlaneMaxNormalSpread = 0.01f;
 // The one-sided neighbourhoods of a rim reach this far from it (pitches):
 // the normals within are refitted by a quadric (detail::quadricNormal).
 // A sphere cap 32 pitches across, random samples, PCA normals: max error
@@ -473,6 +464,37 @@ wideNeighbours (float noise, float spacing)
 {
   return neighboursForNoise (kWideNeighboursPerNoise, noise, spacing, kPcaNeighbours);
 }
+/** Keeps the planes (points and unit normals) that support the rim: at most
+  * kMaxRimPlaneViolations of the other points lie above one, by more than
+  * \a tolerance + \a slope x distance. Every plane of a convex rim does; so
+  * do those of the faces that a convex edge or corner joins to concave or
+  * saddle-shaped parts, whose own planes are left out. */
+inline void
+keepSupportingPlanes (std::vector<Eigen::Vector3f> &points, std::vector<Eigen::Vector3f> &normals, float tolerance,
+                      float slope)
+{
+  std::vector<char> supporting (points.size (), 0);
+  for (std::size_t i = 0; i < points.size (); ++i)
+  {
+    std::size_t above = 0;
+    for (std::size_t j = 0; j < points.size (); ++j)
+    {
+      const Eigen::Vector3f d = points[j] - points[i];
+      above += d.dot (normals[i]) > tolerance + slope * d.norm () ? 1 : 0;
+    }
+    supporting[i] = static_cast<float> (above) <= kMaxRimPlaneViolations * static_cast<float> (points.size ());
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < points.size (); ++i)
+    if (supporting[i])
+    {
+      points[kept] = points[i];
+      normals[kept++] = normals[i];
+    }
+  points.resize (kept);
+  normals.resize (kept);
+}
+
 }  // namespace detail
 
 template <typename PointT> bool
@@ -818,7 +840,7 @@ HoleFilling<PointT>::encloseByRim (detail::ElasticSampler<PointT> &sampler, cons
 }
 
 template <typename PointT> void
-HoleFilling<PointT>::keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                                          const HoleScale &scale, const HoleReport &report)
 {
   // Rim points evenly along the loop, those next to a crease left out:
@@ -848,16 +870,8 @@ HoleFilling<PointT>::keepBelowConvexRim (detail::ElasticSampler<PointT> &sampler
   const float tolerance =
       std::max (detail::kToleranceInSpacings * scale.spacing, detail::kRimPlaneNoiseSigmas * report.noise);
   const float slope = detail::kRimPlaneSlope + report.normal_spread;
-  // Convex: (almost) every rim point lies below every other's plane.
-  std::size_t above = 0;
-  for (std::size_t i = 0; i < points.size (); ++i)
-    for (std::size_t j = 0; j < points.size (); ++j)
-    {
-      const Eigen::Vector3f d = points[j] - points[i];
-      above += d.dot (normals[i]) > tolerance + slope * d.norm () ? 1 : 0;
-    }
-  const std::size_t pairs = points.size () * points.size ();
-  if (pairs > 0 && static_cast<float> (above) <= detail::kMaxRimPlaneViolations * static_cast<float> (pairs))
+  detail::keepSupportingPlanes (points, normals, tolerance, slope);
+  if (!points.empty ())
     sampler.setRimPlanes (std::move (points), std::move (normals), tolerance, slope);
 }
 
@@ -1415,9 +1429,7 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   if (loop.closed)  // an open border encloses nothing
   {
     encloseByRim (sampler, surroundings);
-    if (detail::constraintTolerance (scale.spacing, report.noise) <= detail::kRimPlaneMaxToleranceInPitches * scale.pitch ||
-        report.normal_spread <= detail::kRimPlaneMaxNormalSpread)
-      keepBelowConvexRim (sampler, surroundings, scale, report);
+    keepBelowRimPlanes (sampler, surroundings, scale, report);
   }
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).

@@ -24,7 +24,7 @@ rows=$(printf '%s\n' "$table" | tail -n +3)
   echo "near it (the bowl's flat rim, the cube's bottom face at the bore): the front lies in its own"
   echo "face's plane, so no supporting plane stops it, and the other face's rim points are concave. It"
   echo "grows on as a flat sheet across the opening until the other face's front arrives (bowl, random,"
-  echo "clean, exact normals; bored cube, random, clean: 6-12 pitches)."
+  echo "clean, exact normals; bored cube, random, clean: 6-10 pitches)."
   echo
   echo "Summary:"
   echo

@@ -16,7 +16,7 @@ enum class Termination
 {
   kNotStarted,     //!< nothing could be done (too few usable boundary points, bad setup)
   kControlRatio,   //!< kept control points / boundary points fell under the ratio (the paper's rule)
-  kNoNewBoundary,  //!< the new boundary had fewer than 3 points
+  kNoNewBoundary,  //!< the new boundary had fewer than 4 points
   kDiverging,      //!< the boundary grew past 1.5 times its first length: stopped, not closed
   kPassLimit       //!< the pass bound was reached
 };

@@ -227,7 +227,8 @@ depthInside (const Eigen::AlignedBox3f &box, const Eigen::Vector3f &p)
 /** For each filled point of \a filtered (the input, then the fill), the index
   * of its nearest input point. */
 std::vector<int>
-nearestInputPoints (const pcl::PointCloud<pcl::PointNormal>::ConstPtr &cloud, const pcl::PointCloud<pcl::PointNormal> &filtered,
+nearestInputPoints (const pcl::PointCloud<pcl::PointNormal>::ConstPtr &cloud,
+                    const pcl::PointCloud<pcl::PointNormal> &filtered,
                     const std::vector<pcl_holefill::HoleReport> &reports)
 {
   // A k-d tree, because a filled point's nearest input point is up to a

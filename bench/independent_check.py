@@ -172,7 +172,7 @@ def sample(shape, sampler, n, rng):
     return voxel_grid(*dense, n) if sampler == "voxel grid" else poisson_disk(*dense, n, rng)
 
 
-def pitch_of(shape, points, truth):
+def pitch_of(points, truth):
     """sqrt(area / points), the area from the dense (random) samples' spacing."""
     some = truth[np.random.default_rng(5).permutation(len(truth))[:200000]]
     spacing, _ = cKDTree(some).query(some, k=2)
@@ -198,7 +198,7 @@ def holes(shape, points, pitch, rng):
 def run_case(command, shape, sampler, noise, given_normals, seed, truth, workdir):
     rng = np.random.default_rng(seed)
     points, normals = sample(shape, sampler, 20000, rng)
-    pitch = pitch_of(shape, points, truth)
+    pitch = pitch_of(points, truth)
     centres, radii = holes(shape, points, pitch, rng)
     cut = np.any(np.linalg.norm(points[:, None, :] - centres[None], axis=2) < radii[None], axis=1)
     kept, kept_normals, removed = points[~cut], normals[~cut], points[cut]

@@ -19,9 +19,10 @@ import pcl_holefill
 SAMPLES = 20000
 
 
-def cube_samples(n, seed):
-    """Uniformly random samples of the unit cube's surface, exact outward normals."""
-    rng = np.random.default_rng(seed)
+def cube_samples(n, seed, rng=None):
+    """Uniformly random samples of the unit cube's surface, exact outward normals
+    (drawn from \a rng when given, which the caller may go on drawing from)."""
+    rng = np.random.default_rng(seed) if rng is None else rng
     face = rng.integers(0, 6, n)
     axis, side = face // 2, (face % 2).astype(np.float64)
     uv = rng.random((n, 2))
@@ -301,15 +302,7 @@ def test_a_lone_chain_of_three_stops(tmp_path):
     assert command, "PCL_HOLEFILL_COMMAND must name the pcl_holefill command"
     rng = np.random.default_rng(1)
     n = 50000
-    face, uv = rng.integers(6, size=n), rng.uniform(size=(n, 2))
-    points, normals = np.zeros((n, 3)), np.zeros((n, 3))
-    axis, side = face // 2, (face % 2).astype(float)
-    for a in range(3):
-        on = axis == a
-        others = [b for b in range(3) if b != a]
-        points[on, a] = side[on]
-        points[on, others[0]], points[on, others[1]] = uv[on, 0], uv[on, 1]
-        normals[on, a] = np.where(side[on] > 0, 1, -1)
+    points, normals = cube_samples(n, None, rng)
     kept, kept_normals, removed = cut(points, normals, [((0.5, 0.0, 0.0), 0.15)])
     moved = kept + kept_normals * rng.normal(scale=0.001 * np.sqrt(3), size=(len(kept), 1))
     np.savetxt(tmp_path / "in.xyz", moved, fmt="%.7f")
@@ -319,6 +312,7 @@ def test_a_lone_chain_of_three_stops(tmp_path):
     assert len(out) - len(filled) == len(moved)
     assert cube_distance(filled).max() < 0.09
     assert (gap(removed, out[:, :3]) <= 1.5 * np.sqrt(6.0 / n)).mean() >= 0.96
+
 
 def ridge_samples(n, seed):
     """Uniformly random samples of a 90 degree ridge, z = 0.5 + y up to

@@ -4,6 +4,7 @@
  */
 #include <pcl_holefill/bilateral_preprocessor.h>
 #include <pcl_holefill/detail/boundary_point_test.h>
+#include <pcl_holefill/detail/crease_chords.h>
 #include <pcl_holefill/detail/normal_refit.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/local_surface.h>
@@ -443,4 +444,115 @@ TEST (BilateralPreprocessor, DenoisesAPlaneAndKeepsTheRidge)
   // Normals stay on their face: the ridge is not rounded.
   for (std::size_t i = 0; i < out.size (); ++i)
     EXPECT_GT (out[i].getNormalVector3fMap ().dot (clean[i].getNormalVector3fMap ()), 0.95f);
+}
+
+namespace
+{
+/** The loop of boreEdgeRim, densely: a point every \a step of its parameters (unevenly spaced). */
+void
+boreEdgeLoop (float bore, float radius, float step, std::vector<Eigen::Vector3f> &positions,
+              std::vector<Eigen::Vector3f> &normals)
+{
+  const float reach = 2.f * std::asin (0.5f * radius / bore);  // the crossings' angles around the axis: +-reach
+  const int top = static_cast<int> (std::ceil (M_PI * radius / step));
+  for (int k = 0; k <= top; ++k)  // the top face: the circle of the ball, outside the bore
+  {
+    const float t = static_cast<float> (k) / top;
+    const float a = (1.f - t) * (0.5f * static_cast<float> (M_PI) + 0.5f * reach) +
+                    t * (-0.5f * static_cast<float> (M_PI) - 0.5f * reach);
+    positions.emplace_back (bore + radius * std::cos (a), radius * std::sin (a), 1.f);
+    normals.push_back (Eigen::Vector3f::UnitZ ());
+  }
+  const int wall = static_cast<int> (std::ceil (2.f * radius / step));
+  for (int k = 1; k < wall; ++k)  // the wall, from -reach back to +reach
+  {
+    const float theta = -reach + 2.f * reach * static_cast<float> (k) / wall;
+    const float chord = 2.f * bore * std::sin (0.5f * std::abs (theta));
+    positions.emplace_back (bore * std::cos (theta), bore * std::sin (theta),
+                            1.f - std::sqrt (std::max (0.f, radius * radius - chord * chord)));
+    normals.emplace_back (-std::cos (theta), -std::sin (theta), 0.f);
+  }
+}
+
+/** The rim of a hole cut by a ball of radius \a radius centred on the top
+  * edge of a bore of radius \a bore along z (the top face z = 1 outside
+  * it, normals +z; the wall, normals towards the axis), one point every
+  * \a step of its length, in loop order. */
+void
+boreEdgeRim (float bore, float radius, float step, std::vector<Eigen::Vector3f> &positions,
+             std::vector<Eigen::Vector3f> &normals)
+{
+  std::vector<Eigen::Vector3f> dense, dense_normals;
+  boreEdgeLoop (bore, radius, 0.01f * step, dense, dense_normals);
+  float since = step;
+  for (std::size_t k = 0; k < dense.size (); ++k)
+  {
+    since += k > 0 ? (dense[k] - dense[k - 1]).norm () : 0.f;
+    if (since < step)
+      continue;
+    positions.push_back (dense[k]);
+    normals.push_back (dense_normals[k]);
+    since = 0.f;
+  }
+}
+}  // namespace
+
+TEST (CreaseChords, AHoleAcrossABoreEdgeKeepsTheTopFaceOutOfTheBore)
+{
+  std::vector<Eigen::Vector3f> positions, normals;
+  const float bore = 0.3f, radius = 0.15f;
+  boreEdgeRim (bore, radius, 0.015f, positions, normals);
+  const auto chords = pcl_holefill::detail::findCreaseChords (positions, normals, 0.015f);
+  ASSERT_EQ (chords.size (), 1u);
+  const auto &c = chords.front ();
+  // Its ends are where the loop crosses the bore's edge (z = 1, at the bore's radius, +-radius in y).
+  for (const Eigen::Vector3f &end : {c.from, c.to})
+  {
+    EXPECT_NEAR (end.z (), 1.f, 0.016f);
+    EXPECT_NEAR (std::hypot (end.x (), end.y ()), bore, 0.016f);
+    EXPECT_NEAR (std::abs (end.y ()), radius, 0.016f);
+  }
+  // A top-face sample over the bore, past the chord (x = 0.262 at y = 0; the
+  // chord misses the edge by its sagitta, 0.038 there), overshoots; one on
+  // the top face, or on the wall, does not.
+  const float tolerance = 0.01f;
+  EXPECT_TRUE (c.crossedBy ({bore - 0.08f, 0.f, 1.f}, Eigen::Vector3f::UnitZ (), tolerance));
+  EXPECT_FALSE (c.crossedBy ({bore + 0.02f, 0.f, 1.f}, Eigen::Vector3f::UnitZ (), tolerance));
+  EXPECT_FALSE (c.crossedBy ({bore, 0.f, 0.95f}, -Eigen::Vector3f::UnitX (), tolerance));
+}
+
+TEST (CreaseChords, EdgesBetweenFlatOrConvexFacesHaveNone)
+{
+  // A hole across a cube's edge: each face's tangent plane holds the other's front already.
+  std::vector<Eigen::Vector3f> positions, normals;
+  for (int k = 0; k <= 42; ++k)
+  {
+    const float t = static_cast<float> (M_PI) * (0.5f + static_cast<float> (k) / 42.f);
+    positions.emplace_back (1.f + 0.2f * std::cos (t), 0.5f + 0.2f * std::sin (t), 1.f);
+    normals.push_back (Eigen::Vector3f::UnitZ ());
+  }
+  for (int k = 1; k < 42; ++k)
+  {
+    const float t = static_cast<float> (M_PI) * (1.5f + static_cast<float> (k) / 42.f);
+    positions.emplace_back (1.f, 0.5f + 0.2f * std::sin (t), 1.f - 0.2f * std::cos (t));
+    normals.push_back (Eigen::Vector3f::UnitX ());
+  }
+  EXPECT_TRUE (pcl_holefill::detail::findCreaseChords (positions, normals, 0.02f).empty ());
+}
+
+TEST (CreaseChords, SmoothlyTurningAndFlatRimsHaveNone)
+{
+  // A rim running around a cylinder of radius 0.2 (normals turning by 360
+  // degrees, 6 degrees a point), and a flat circle.
+  std::vector<Eigen::Vector3f> around, around_normals, flat, flat_normals;
+  for (int k = 0; k < 60; ++k)
+  {
+    const float t = 2.f * static_cast<float> (M_PI) * static_cast<float> (k) / 60.f;
+    around.emplace_back (0.2f * std::cos (t), 0.2f * std::sin (t), 0.05f * std::sin (2.f * t));
+    around_normals.emplace_back (std::cos (t), std::sin (t), 0.f);
+    flat.emplace_back (0.2f * std::cos (t), 0.2f * std::sin (t), 0.f);
+    flat_normals.push_back (Eigen::Vector3f::UnitZ ());
+  }
+  EXPECT_TRUE (pcl_holefill::detail::findCreaseChords (around, around_normals, 0.02f).empty ());
+  EXPECT_TRUE (pcl_holefill::detail::findCreaseChords (flat, flat_normals, 0.02f).empty ());
 }

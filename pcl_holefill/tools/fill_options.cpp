@@ -103,6 +103,8 @@ usage (const char *program)
       << "                    each hole (the first 8) seen from outside the surface\n"
       << "  -threads N        0 = all cores                                                  (0)\n"
       << "  -q                quiet: no progress or notes on stderr\n"
+      << "  -v                verbose: PCL's debug output too, on stdout (each pass's counts\n"
+      << "                    of kept, repelled and rejected samples)\n"
       << "  -demo DIR         run the built-in demo (cube corner, sphere cap) into DIR\n"
       << "  -h                this text\n";
   return out.str ();
@@ -116,7 +118,8 @@ setSwitch (const std::string &arg, Options &options)
 {
   static const std::map<std::string, bool Options::*> switches{
       {"-h", &Options::help},           {"--help", &Options::help},
-      {"-q", &Options::quiet},          {pcl_holefill::parameters::kDenoise.option, &Options::denoise},
+      {"-q", &Options::quiet},          {"-v", &Options::verbose},
+      {pcl_holefill::parameters::kDenoise.option, &Options::denoise},
       {pcl_holefill::parameters::kFirstOrder.option, &Options::zero_order}, {"-detect_only", &Options::detect_only},
   };
   const auto found = switches.find (arg);

@@ -40,6 +40,7 @@ struct Options
   std::string holes_file, report_file, png_file, demo_dir;
   int threads = 0;
   bool quiet = false;
+  bool verbose = false;
   bool detect_only = false;
   bool help = false;
 };

@@ -8,16 +8,29 @@
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
+#include <vector>
+
 namespace pcl_holefill_tool
 {
 /** \brief Normals for a cloud that has none, as the command and the Python
   * module give them: PCL NormalEstimationOMP over k = 16 nearest neighbours,
   * or more on a noisy cloud (normalNeighboursForNoise of the noise that the
   * first pass measures), then consistently oriented
-  * (pcl_holefill::orientNormalsConsistently). Non-finite points get NaN
+  * (pcl_holefill::orientNormalsConsistently), then refitted where they
+  * reached another sheet (refitAcrossSheets). Non-finite points get NaN
   * normals. Returns the k used. */
 int
 estimateOrientedNormals (pcl::PointCloud<pcl::PointNormal> &cloud, unsigned int threads);
+
+/** \brief Refits the oriented normals of \a cloud whose PCA over \a k
+  * neighbours may have reached another sheet of a thin part: those of a
+  * surface variation (\a variation, lambda_0 / sum, per point) well above
+  * the cloud's median, on their neighbours (in \a xyz, through \a search)
+  * whose normals face their own way. Returns how many were refitted. */
+std::size_t
+refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointCloud<pcl::PointXYZ> &xyz,
+                   const pcl::search::Search<pcl::PointXYZ> &search, const std::vector<float> &variation, int k,
+                   unsigned int threads);
 
 /** The noise of a cloud across its surface, in sampling pitches (sqrt of
   * the area per point): PCA over the \a k nearest neighbours of about

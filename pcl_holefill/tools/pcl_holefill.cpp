@@ -184,7 +184,9 @@ main (int argc, char **argv)
     return 0;
   }
   // The library's own warnings stay; its chatter does not.
-  pcl::console::setVerbosityLevel (options.quiet ? pcl::console::L_ERROR : pcl::console::L_WARN);
+  pcl::console::setVerbosityLevel (options.quiet     ? pcl::console::L_ERROR
+                                   : options.verbose ? pcl::console::L_DEBUG
+                                                     : pcl::console::L_WARN);
   if (!options.demo_dir.empty ())
     return runDemo (options.demo_dir, options.quiet);
   return run (options);

@@ -291,6 +291,35 @@ def test_a_hole_across_a_bore_edge_stays_on_the_part(given_normals, bound):
         assert (gap(removed, res.points) <= 1.5 * pitch(7.08)).mean() >= 0.9, seed
 
 
+@pytest.mark.parametrize("given_normals", [True, False])
+def test_a_face_stops_at_a_bore_edge_whose_wall_the_hole_took(tmp_path, given_normals):
+    # A hole 0.13 in radius centred on the bore's wall just above the bottom
+    # face: the rim runs along the bottom face and up the wall. The bottom
+    # face's front lay in its own plane, so no supporting plane held it, and
+    # the wall's rim points are concave (their planes lie below it): it grew
+    # on over the bore as a flat sheet. The rim's turn from face to wall and
+    # back now gives the crease (a curve between the crossings, along the
+    # faces' normals' cross product there), which holds the face. The
+    # installed command, x y z (nx ny nz) text; seeds 1-3. Before: max error
+    # 0.100-0.166; reached: 0.011-0.022 (exact normals), 0.016-0.024
+    # (estimated). Covered 0.911-1.0 (before 0.971-0.994, partly by the sheet
+    # that passed over the wall's foot; the wall's front now stops short of
+    # it on one seed, and the hole is reported open).
+    command = os.environ.get("PCL_HOLEFILL_COMMAND")
+    assert command, "PCL_HOLEFILL_COMMAND must name the pcl_holefill command"
+    centre = (0.5 + BORE * np.cos(2.0), 0.5 + BORE * np.sin(2.0), 0.07)
+    for seed in (1, 2, 3):
+        points, normals = bored_cube_samples(SAMPLES, seed)
+        kept, kept_normals, removed = cut(points, normals, [(centre, 0.13)])
+        np.savetxt(tmp_path / "in.xyz", np.c_[kept, kept_normals] if given_normals else kept, fmt="%.7f")
+        subprocess.run([command, str(tmp_path / "in.xyz"), str(tmp_path / "out.xyz"), "-q"], check=True)
+        out = np.loadtxt(tmp_path / "out.xyz")
+        filled = out[out[:, -1] == 1][:, :3]
+        assert np.array_equal(out[out[:, -1] == 0][:, :3], np.round(kept, 7)), seed
+        assert bored_cube_distance(filled).max() < 0.035, seed
+        assert (gap(removed, out[:, :3]) <= 1.5 * pitch(7.08)).mean() >= 0.88, seed
+
+
 def test_a_lone_chain_of_three_stops(tmp_path):
     # A cube edge hole 0.15 in radius, 50,000 random samples drawn face by
     # face in one stream with their noise (0.1 %), written as x y z text and

@@ -286,6 +286,13 @@ private:
   keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                       const HoleScale &scale, const HoleReport &report);
 
+  /** The creases that cross the hole, from the faces its rim passes
+    * through: each face's front stays on its side of the crease
+    * (detail::findCreaseChords, ElasticSampler::setCreaseChords). */
+  static void
+  keepFacesApartAtCreases (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+                           const HoleScale &scale, const HoleReport &report);
+
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool
   measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,

@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_holefill/detail/crease_chords.h>
 #include <pcl_holefill/detail/front.h>
 #include <pcl_holefill/detail/normal_propagation.h>
 #include <pcl_holefill/detail/point_grid.h>
@@ -192,6 +193,16 @@ public:
     rim_plane_slope_ = slope;
   }
 
+  /** \brief The creases that cross the hole (findCreaseChords): a sample of
+    * one face on the other's side of a chord's plane by more than \a
+    * tolerance (cloud units) overshoots the crease. */
+  void
+  setCreaseChords (std::vector<CreaseChord> chords, float tolerance)
+  {
+    crease_chords_ = std::move (chords);
+    crease_tolerance_ = tolerance;
+  }
+
   /** \brief Threads for the candidates of one pass (>= 1, default 1). The
     * candidates are placed side by side and kept in order: the result is the
     * same for any number. */
@@ -301,6 +312,8 @@ private:
   float bound_radius_ = 0.f;
   std::vector<Eigen::Vector3f> rim_;
   std::vector<Eigen::Vector3f> rim_plane_points_, rim_plane_normals_;
+  std::vector<CreaseChord> crease_chords_;
+  float crease_tolerance_ = 0.f;
   float rim_plane_tolerance_ = 0.f, rim_plane_slope_ = 0.f;
   Eigen::Vector3f rim_axis_ = Eigen::Vector3f::UnitZ ();
   float max_rim_gap_along_axis_ = 0.f, max_rim_gap_along_normal_ = 0.f;

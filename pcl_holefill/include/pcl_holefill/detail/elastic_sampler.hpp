@@ -166,6 +166,9 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
     return Verdict::kBeyondRim;
   if (combination_constraint_ && breaksCombinationConstraint (position))
     return Verdict::kOvershoot;
+  if (combination_constraint_ && std::any_of (crease_chords_.begin (), crease_chords_.end (),
+                   [&] (const CreaseChord &c) { return c.crossedBy (position, normal, crease_tolerance_); }))
+    return Verdict::kOvershoot;
   return Verdict::kKept;
 }
 

@@ -221,6 +221,9 @@ constexpr float kSharpSigmaN = 0.1f;
 // from 99 % to 80 % at 0.7).
 constexpr float kMaxAutoSigmaN = 0.3f;
 
+// Slack of the crease chords' planes (detail::CreaseChord), in d_eq.
+constexpr float kCreaseChordToleranceInDeq = 0.5f;
+
 /** The median of \a values (0 when empty); reorders them. */
 inline float
 median (std::vector<float> &values)
@@ -885,6 +888,24 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
 }
 
 template <typename PointT> void
+HoleFilling<PointT>::keepFacesApartAtCreases (detail::ElasticSampler<PointT> &sampler,
+                                              const Surroundings &surroundings, const HoleScale &scale,
+                                              const HoleReport &report)
+{
+  std::vector<Eigen::Vector3f> positions, normals;
+  for (const auto i : surroundings.rim)
+  {
+    positions.push_back ((*surroundings.cloud)[i].getVector3fMap ());
+    normals.push_back ((*surroundings.cloud)[i].getNormalVector3fMap ().normalized ());
+  }
+  // The chord misses a curved crease by its sagitta and the crossings lie
+  // within a spacing of the crease: half d_eq of slack, more with noise.
+  sampler.setCreaseChords (detail::findCreaseChords (positions, normals, scale.spacing),
+                           std::max (detail::kCreaseChordToleranceInDeq * scale.d_eq,
+                                     detail::constraintTolerance (scale.spacing, report.noise)));
+}
+
+template <typename PointT> void
 HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                                    const HoleScale &scale, HoleReport &report) const
 {
@@ -1439,6 +1460,7 @@ HoleFilling<PointT>::fillHole (const PointCloud &working, pcl::search::Search<Po
   {
     encloseByRim (sampler, surroundings);
     keepBelowRimPlanes (sampler, surroundings, scale, report);
+    keepFacesApartAtCreases (sampler, surroundings, scale, report);
   }
 
   // 3. Do ... Until: contract the boundary pass by pass (sec. 4).

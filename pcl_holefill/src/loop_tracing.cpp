@@ -16,6 +16,13 @@
 
 namespace pcl_holefill::detail
 {
+// A loop is a border when the mean of its gaps' parts across the surface it
+// spans, dotted with the direction to its centre, is under -kOpeningGapVote:
+// outer borders of a flat patch, a saddle, a half cylinder measure -0.45 to
+// -0.86; openings, whose gaps point along the walls, -0.01 to 0.01 (the sign
+// of that decided before, and one cylinder was a border with exact normals
+// and a hole without).
+constexpr float kOpeningGapVote = 0.25f;
 namespace
 {
 /** Connected sets of points under "closer than link". */
@@ -339,6 +346,22 @@ refineByMidpoints (const std::vector<int> &features, bool closed,
   return result;
 }
 
+Eigen::Vector3f
+vectorArea (const std::vector<Eigen::Vector3f> &loop_positions)
+{
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
+  for (const auto &p : loop_positions)
+    centroid += p;
+  centroid /= static_cast<float> (std::max<std::size_t> (1, loop_positions.size ()));
+  Eigen::Vector3f area = Eigen::Vector3f::Zero ();
+  for (std::size_t i = 0; i < loop_positions.size (); ++i)
+  {
+    const auto &next = loop_positions[(i + 1) % loop_positions.size ()];
+    area += 0.5f * (loop_positions[i] - centroid).cross (next - centroid);
+  }
+  return area;
+}
+
 bool
 gapsPointInside (const std::vector<Eigen::Vector3f> &loop_positions,
                  const std::vector<Eigen::Vector3f> &loop_gap_directions)
@@ -349,15 +372,24 @@ gapsPointInside (const std::vector<Eigen::Vector3f> &loop_positions,
   for (const auto &p : loop_positions)
     centroid += p;
   centroid /= static_cast<float> (loop_positions.size ());
+  // Only the gaps' parts across the surface the loop spans: at an opening
+  // (the end of a tube, a box without its lid) the gaps point along the
+  // walls, out of that surface, and what is left of them is small either way.
+  const Eigen::Vector3f area = vectorArea (loop_positions);
+  const Eigen::Vector3f axis = area.norm () > 0.f ? Eigen::Vector3f (area.normalized ()) : Eigen::Vector3f::Zero ();
   float vote = 0.f;
   for (std::size_t i = 0; i < loop_positions.size (); ++i)
   {
     const Eigen::Vector3f to_centre = centroid - loop_positions[i];
     const float len = to_centre.norm ();
     if (len > 0.f)
-      vote += loop_gap_directions[i].dot (to_centre / len);
+    {
+      const Eigen::Vector3f gap = loop_gap_directions[i] - loop_gap_directions[i].dot (axis) * axis;
+      vote += gap.dot (to_centre / len);
+    }
   }
-  return vote >= 0.f;
+  vote /= static_cast<float> (loop_positions.size ());
+  return vote >= -kOpeningGapVote;
 }
 
 float

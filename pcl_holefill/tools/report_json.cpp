@@ -73,7 +73,8 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"resumed\": " << r.resumed << ", \"refitted_normals\": " << r.refitted_normals << ", \"centre\": " << coordinates (r.centre, origin)
         << ", \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
-        << ", \"first_order\": " << (r.first_order ? "true" : "false") << ", \"sigma_n\": ";
+        << ", \"first_order\": " << (r.first_order ? "true" : "false")
+        << ", \"across_opening\": " << (r.across_opening ? "true" : "false") << ", \"sigma_n\": ";
     if (std::isinf (r.sigma_n))
       out << "\"sup\"";  // JSON has no infinity
     else

@@ -343,6 +343,29 @@ def test_a_lone_chain_of_three_stops(tmp_path):
     assert (gap(removed, out[:, :3]) <= 1.5 * np.sqrt(6.0 / n)).mean() >= 0.96
 
 
+@pytest.mark.parametrize("noise", [0.0, 0.001])
+def test_a_cube_without_its_underside_is_closed_across_it(noise):
+    # The underside of a scanned object: a whole face missing, so the rim is
+    # a crease all round and its normals (estimated here) lie along the
+    # walls. The fronts carried the walls on down past the rim (max error
+    # 1.07-1.10, 8 % of the face covered); now the fill runs across the
+    # opening. 30,000 random samples, seeds 1-2; reached: max error 0.17-0.27
+    # pitch, covered 99.4-100 %.
+    n = 30000
+    p = np.sqrt(6.0 / n)
+    for seed in (1, 2):
+        rng = np.random.default_rng(seed)
+        points, normals = cube_samples(n, None, rng)
+        bottom = points[:, 2] == 0.0
+        kept = points[~bottom] + normals[~bottom] * rng.normal(scale=noise * np.sqrt(3), size=((~bottom).sum(), 1))
+        res = pcl_holefill.fill(kept, None, quiet=True)
+        assert np.array_equal(res.points[:len(kept)], kept)
+        assert len(res.reports) == 1 and res.reports[0]["across_opening"], seed
+        fill = res.points[res.filled]
+        assert cube_distance(fill).max() < 0.5 * p + 3 * noise * np.sqrt(3), seed
+        assert (gap(points[bottom], res.points) <= 1.5 * p).mean() >= 0.99, seed
+
+
 def ridge_samples(n, seed):
     """Uniformly random samples of a 90 degree ridge, z = 0.5 + y up to
     y = 0.5 and 1.5 - y beyond (x, y in [0, 1]), exact normals."""

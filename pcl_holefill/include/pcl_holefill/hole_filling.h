@@ -225,6 +225,32 @@ private:
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             PointCloud &filled, HoleReport &report, int threads) const;
 
+  /** Steps 2-4 of Algorithm 1 for one hole: its surroundings and their
+    * normals, the sampler, the passes until termination, the closure check
+    * (and the fill taken up again where it stopped early). With
+    * \a across_opening the rim's normals are first turned to the face
+    * across the opening (turnRimAcrossOpening). Returns the surroundings,
+    * the fill appended to their cloud. */
+  Surroundings
+  contractHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
+                const pcl::Indices &rim, const HoleScale &scale, HoleReport &report, int threads,
+                bool across_opening) const;
+
+  /** Did the fill in \a surroundings run off its loop along walls parallel
+    * to the loop's axis (detail::shareAlongWalls, alignmentWithLoop)? */
+  static bool
+  ranAlongWalls (const Surroundings &surroundings);
+
+  /** The centroid of the input points of \a surroundings. */
+  static Eigen::Vector3f
+  surroundingsCentroid (const Surroundings &surroundings);
+
+  /** Sets the fill's copy of the rim's normals to the normal of the face
+    * across the opening (detail::openingNormal); returns the rim's depth
+    * along it (detail::depthAlong). */
+  static float
+  turnRimAcrossOpening (Surroundings &surroundings);
+
   /** Refits the normals of the surroundings' input points that PCA blended
     * across a crease (detail::refitCreaseNormal), planes counting neighbours
     * within \a tolerance; returns how many. Only the fill's copy changes. */

@@ -49,6 +49,8 @@ struct HoleReport
   float noise = 0.f;                   //!< the rim's noise: RMS height of its neighbours over their fitted quadric
   float normal_spread = 0.f;           //!< median |n_p - n_q| between close rim neighbours (curvature, normal noise)
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
+  bool across_opening = false;         //!< filled across an opening, its rim a crease all round (the fronts
+                                       //!< ran off along the walls first: detail/opening.h)
   float sigma_n = 0.f;                 //!< sigma_n used (chosen per hole when automatic; kSup = off)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
   pcl::Indices boundary;               //!< the hole's boundary loop, in order: indices of the output's first

@@ -203,6 +203,19 @@ public:
     crease_tolerance_ = tolerance;
   }
 
+  /** \brief The next pass's closed chains contract towards \a centre
+    * instead of by the vote "away from the existing neighbours". Across an
+    * opening the existing neighbours of the rim are the walls below it, level
+    * with it (a box) or curving inwards (a tube), so that vote says nothing
+    * or the wrong thing; from the second pass on the first ring is there to
+    * vote against. Cleared by the pass that uses it. */
+  void
+  setInwardCentre (const Eigen::Vector3f &centre)
+  {
+    inward_centre_ = centre;
+    has_inward_centre_ = true;
+  }
+
   /** \brief Threads for the candidates of one pass (>= 1, default 1). The
     * candidates are placed side by side and kept in order: the result is the
     * same for any number. */
@@ -317,6 +330,8 @@ private:
   float rim_plane_tolerance_ = 0.f, rim_plane_slope_ = 0.f;
   Eigen::Vector3f rim_axis_ = Eigen::Vector3f::UnitZ ();
   float max_rim_gap_along_axis_ = 0.f, max_rim_gap_along_normal_ = 0.f;
+  Eigen::Vector3f inward_centre_ = Eigen::Vector3f::Zero ();
+  bool has_inward_centre_ = false;
   mutable std::vector<signed char> curvature_signs_;  //!< 2 = not computed yet
 };
 

@@ -205,6 +205,12 @@ ElasticSampler<PointT>::contractingDirections (const FrontChain &chain) const
       directions[i].normalize ();
     else
       directions[i].setZero ();
+    if (has_inward_centre_ && chain.closed)
+    {
+      const float side = directions[i].dot (inward_centre_ - v.position);
+      vote += side > 0.f ? 1 : (side < 0.f ? -1 : 0);
+      continue;
+    }
     Neighbourhood around;
     propagation_.gatherNeighbourhood (v.position, around);
     if (around.size () == 0)
@@ -417,6 +423,7 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       sampleAlongCurve (run, wraps, pass, next);
   }
   stats.samples = frontSize (next);
+  has_inward_centre_ = false;
   return true;
 }
 

@@ -46,11 +46,18 @@ refineByMidpoints (const std::vector<int> &features, bool closed,
 
 /** \brief True when the missing surface lies inside the loop (a hole), false
   * when it lies outside (the outer border of an open surface): the gap
-  * directions point towards the loop's centroid for a hole, away from it for
-  * a border. */
+  * directions, their parts across the surface the loop spans, point towards
+  * the loop's centroid for a hole, away from it for a border, and along the
+  * walls (neither) at an opening, which is a hole (detail/opening.h). */
 bool
 gapsPointInside (const std::vector<Eigen::Vector3f> &loop_positions,
                  const std::vector<Eigen::Vector3f> &loop_gap_directions);
+
+/** \brief The loop's vector area, 1/2 sum of (p_i - c) x (p_i+1 - c) about
+  * its centroid c: its direction is the axis of the surface the loop spans,
+  * whatever the normals of its points (zero for a loop that spans nothing). */
+Eigen::Vector3f
+vectorArea (const std::vector<Eigen::Vector3f> &loop_positions);
 
 /** \brief Largest distance between two loop points (exact up to 2000 points,
   * on an even subsample beyond). */

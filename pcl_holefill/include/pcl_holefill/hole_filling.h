@@ -246,8 +246,9 @@ private:
   surroundingsCentroid (const Surroundings &surroundings);
 
   /** Sets the fill's copy of the rim's normals to the normal of the face
-    * across the opening (detail::openingNormal); returns the rim's depth
-    * along it (detail::depthAlong). */
+    * across the opening (detail::openingNormal) and, on a flat rim, moves
+    * the copy onto the plane of its outermost points; returns the depth
+    * along that normal left in the copy (detail::depthAlong; 0 when moved). */
   static float
   turnRimAcrossOpening (Surroundings &surroundings);
 

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 namespace
 {
@@ -40,6 +41,24 @@ withoutLid (const Shape &shape, std::size_t points, Sampling sampling, unsigned 
   return cut;
 }
 
+/** \a shape without its faces at z = \a lid: a model whose opening was never
+  * sampled (a scan that never saw the underside), not one cut afterwards. */
+Shape
+withoutFace (const Shape &shape, double lid, bool keep_the_face)
+{
+  Shape out = shape;
+  out.faces.clear ();
+  out.closed = false;
+  for (const auto &f : shape.faces)
+  {
+    const bool on_lid = std::all_of (f.corners.begin (), f.corners.end (),
+                                     [lid] (const Eigen::Vector3d &c) { return std::abs (c.z () - lid) < 1e-9; });
+    if (on_lid == keep_the_face)
+      out.faces.push_back (f);
+  }
+  return out;
+}
+
 struct OpeningFill
 {
   std::size_t holes = 0;
@@ -49,6 +68,16 @@ struct OpeningFill
   double off_lid = 0.0;         //!< farthest filled point from the lid's plane
   std::size_t filled = 0;
 };
+
+/** One report, filled across the opening and closed, the input untouched. */
+void
+expectClosedAcross (const OpeningFill &f, const std::string &what)
+{
+  EXPECT_EQ (f.holes, 1u) << what;
+  EXPECT_TRUE (f.across) << what;
+  EXPECT_TRUE (f.closed) << what;
+  EXPECT_TRUE (f.input_unchanged) << what;
+}
 
 OpeningFill
 fillOpening (const Shape &shape, const pcl_holefill::shapes::CutCloud &cut, double lid, double pitch)
@@ -108,10 +137,7 @@ TEST (Openings, ABoxWithoutItsLidIsClosedAcrossIt)
       const auto cut = withoutLid (cube, points, sampling, 3, 1.0, estimated);
       const OpeningFill f = fillOpening (cube, cut, 1.0, p);
       const std::string what = std::string (corpus::toString (sampling)) + (estimated ? ", estimated" : ", exact");
-      EXPECT_EQ (f.holes, 1u) << what;
-      EXPECT_TRUE (f.across) << what;
-      EXPECT_TRUE (f.closed) << what;
-      EXPECT_TRUE (f.input_unchanged) << what;
+      expectClosedAcross (f, what);
       // reached 100 %
       EXPECT_GE (f.coverage, 0.99) << what;
       // reached 0.20 pitch: the rim's copy is flattened onto its outermost
@@ -160,5 +186,47 @@ TEST (Openings, AreHolesNotBorders)
     estimation.compute (loops);
     ASSERT_EQ (loops.size (), 1u) << seed;
     EXPECT_TRUE (loops[0].is_hole) << seed;
+  }
+}
+
+// A box that was sampled without its lid (not cut from a closed box): the
+// last row of samples lies up to a pitch short of the crease, and on scan
+// lines, varying density and random samples the fronts stopped at the rim
+// after 6-8 passes up the walls (the paper's ratio rule), too soon to count
+// as run along them: 6-7 % of the lid covered, 0.10 off. With noise, the
+// walls' own points, labelled concave by their noise, rejected every sample
+// inwards of them (0.1 %: 10-11 % covered). Ground truth: the lid's surface
+// (a jittered sampling of it, not the clouds' sampler) and the closed box.
+TEST (Openings, ABoxSampledWithoutItsLidIsClosedAcrossIt)
+{
+  const Shape cube = pcl_holefill::shapes::cube ();
+  const Shape open = withoutFace (cube, 1.0, false);
+  const std::size_t points = 30000;
+  const double p = corpus::pitch (open, points);
+  pcl_holefill::shapes::CutCloud cut;
+  cut.removed = corpus::sampleSurface (withoutFace (cube, 1.0, true), 12000, Sampling::kJittered, 9);
+  const struct
+  {
+    Sampling sampling;
+    double noise;
+    bool estimated;
+  } cases[] = {{Sampling::kScan, 0.0, false},
+               {Sampling::kVarying, 0.0, false},
+               {Sampling::kRandom, 0.0, false},
+               {Sampling::kVoxel, 0.001, true},
+               {Sampling::kRandom, 0.003, true}};
+  for (const auto &c : cases)
+  {
+    cut.kept = corpus::sampleSurface (open, points, c.sampling, 3);
+    corpus::addNoise (cut.kept, open, c.noise, 11);
+    if (c.estimated)
+      corpus::estimateNormals (cut.kept);
+    const OpeningFill f = fillOpening (cube, cut, 1.0, p);
+    const std::string what = std::string (corpus::toString (c.sampling)) + ", noise " + std::to_string (c.noise);
+    expectClosedAcross (f, what);
+    // reached 99.97-100 % (was 6-11 %)
+    EXPECT_GE (f.coverage, 0.99) << what;
+    // reached 0.09-0.32 pitch (was 7.7); the margin is 0.28 pitch
+    EXPECT_LE (f.max_error, 0.6 * p) << what;
   }
 }

@@ -236,10 +236,11 @@ private:
                 const pcl::Indices &rim, const HoleScale &scale, HoleReport &report, int threads,
                 bool across_opening) const;
 
-  /** Did the fill in \a surroundings run off its loop along walls parallel
-    * to the loop's axis (detail::shareAlongWalls, alignmentWithLoop)? */
+  /** Did the fill in \a surroundings (reported in \a report) run off its
+    * loop along walls parallel to the loop's axis (detail::shareAlongWalls,
+    * alignmentWithLoop), or set out along them and stop at the rim? */
   static bool
-  ranAlongWalls (const Surroundings &surroundings);
+  ranAlongWalls (const Surroundings &surroundings, const HoleReport &report);
 
   /** The centroid of the input points of \a surroundings. */
   static Eigen::Vector3f
@@ -248,9 +249,11 @@ private:
   /** Sets the fill's copy of the rim's normals to the normal of the face
     * across the opening (detail::openingNormal) and, on a flat rim, moves
     * the copy onto the plane of its outermost points; returns the depth
-    * along that normal left in the copy (detail::depthAlong; 0 when moved). */
+    * along that normal left in the copy (detail::depthAlong; 0 when moved)
+    * and sets \a across to the face's normal (zero when the loop spans
+    * nothing and the copy is left alone). */
   static float
-  turnRimAcrossOpening (Surroundings &surroundings);
+  turnRimAcrossOpening (Surroundings &surroundings, Eigen::Vector3f &across);
 
   /** Refits the normals of the surroundings' input points that PCA blended
     * across a crease (detail::refitCreaseNormal), planes counting neighbours

@@ -203,6 +203,15 @@ public:
     crease_tolerance_ = tolerance;
   }
 
+  /** \brief Only reference points whose normal lies within 45 degrees of
+    * the unit \a direction bound the samples (the combination constraint);
+    * zero (default): every reference point. Across an opening: the face's
+    * normal, so that the walls standing across the face do not. */
+  void
+  setConstraintFacing (const Eigen::Vector3f &direction) { constraint_facing_ = direction; }
+  const Eigen::Vector3f &
+  getConstraintFacing () const { return constraint_facing_; }
+
   /** \brief The next pass's closed chains contract towards \a centre
     * instead of by the vote "away from the existing neighbours". Across an
     * opening the existing neighbours of the rim are the walls below it, level
@@ -319,6 +328,7 @@ private:
   float slope_ = 0.f;
   float sign_tolerance_ = 0.f;
   float constraint_radius_ = 0.f;
+  Eigen::Vector3f constraint_facing_ = Eigen::Vector3f::Zero ();
   int threads_ = 1;
   bool combination_constraint_ = true;
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();

@@ -25,6 +25,9 @@ constexpr float kDuplicateReach = 0.5f;
 constexpr float kChainBreak = 3.f;
 // Half-width of the stencil that gives the boundary tangent.
 constexpr int kTangentStencil = 2;
+// cos 45 degrees: a reference point's normal within this of the constraint's
+// facing direction (setConstraintFacing) faces the same way.
+constexpr float kFacingCosine = 0.7071f;
 
 /** Unit tangent of a chain at vertex i from the vertices kTangentStencil away. */
 inline Eigen::Vector3f
@@ -123,7 +126,10 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
     if (sign == 0)
       continue;
     const PointT &q = (*input_)[found[k]];
-    const float height = (position - q.getVector3fMap ()).dot (q.getNormalVector3fMap ().normalized ());
+    const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
+    if (!constraint_facing_.isZero () && normal.dot (constraint_facing_) < kFacingCosine)
+      continue;
+    const float height = (position - q.getVector3fMap ()).dot (normal);
     const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distances[k]);
     if ((sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance))
       return true;

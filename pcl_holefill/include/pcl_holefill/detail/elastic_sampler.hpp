@@ -122,12 +122,14 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
   propagation_.getSearchMethod ()->radiusSearch (query, constraintReach (), found, sqr_distances);
   for (std::size_t k = 0; k < found.size (); ++k)
   {
-    const int sign = curvatureSign (found[k]);
-    if (sign == 0)
-      continue;
+    // Facing first: a point that does not face the way bounds nothing, and
+    // its curvature sign (a neighbourhood gathered) need not be computed.
     const PointT &q = (*input_)[found[k]];
     const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
     if (!constraint_facing_.isZero () && normal.dot (constraint_facing_) < kFacingCosine)
+      continue;
+    const int sign = curvatureSign (found[k]);
+    if (sign == 0)
       continue;
     const float height = (position - q.getVector3fMap ()).dot (normal);
     const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distances[k]);

@@ -237,7 +237,7 @@ constexpr float kMaxWallAlignment = 0.3f;
 // at the bound) that left an opening this share of the loop's diameter
 // wide has closed almost nothing: it counts as run along the walls whatever
 // its share (boxes without their lid sampled on scan lines, with varying
-// density, at random: 0.95-0.98, 6-8 passes up the walls; share 0.00).
+// density, at random: 0.95-0.99, 6-8 passes up the walls; share 0.00).
 constexpr float kStillOpen = 0.9f;
 // The face across an opening may lie this many RMS depths of the rim (its
 // points' spread along the face's normal) off a rim point's plane.

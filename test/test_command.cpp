@@ -5,6 +5,7 @@
  * The pcl_holefill command, run as a user would run it.
  */
 #include "hole_pictures.h"
+#include "nearest_point_tree.h"
 #include "normal_estimation.h"
 #include "render.h"
 #include "shapes.h"
@@ -137,6 +138,53 @@ TEST_F (Command, FilledRowsTakeTheFieldsOfTheirNearestInputPoint)
     // the copied row is a nearest one (ties aside)
     EXPECT_LE ((numbered[copied].getVector3fMap () - out[i].getVector3fMap ()).squaredNorm (), sqr_distances[0] * 1.0001f + 1e-12f);
   }
+}
+
+// The command's k-d tree against a scan of every point: queries deep in a
+// large hole (far from every point), on the rim, off the surface, among
+// non-finite points, and on an empty tree.
+TEST (NearestPointTree, FindsTheNearestPointEvenDeepInALargeHole)
+{
+  const auto cut = shapes::cutHoles (shapes::sphere ().sample (20000), {{{0.5, 0.5, 1.0}, 0.35}});
+  pcl::PointCloud<pcl::PointNormal> cloud = cut.kept;
+  cloud[3].x = std::numeric_limits<float>::quiet_NaN ();
+  cloud[7].z = std::numeric_limits<float>::infinity ();
+  std::vector<Eigen::Vector3f> queries;
+  std::mt19937 random (11);
+  std::uniform_real_distribution<float> unit (-1.f, 1.f);
+  for (int i = 0; i < 2000; ++i)
+  {
+    const Eigen::Vector3f d (unit (random), unit (random), unit (random));
+    // points of the cut cap, and anywhere around the sphere
+    const Eigen::Vector3f centre (0.5f, 0.5f, 0.5f);
+    const Eigen::Vector3f on_cap = centre + 0.5f * Eigen::Vector3f (0.4f * d.x (), 0.4f * d.y (), 1.f).normalized ();
+    queries.push_back (i % 2 ? on_cap : Eigen::Vector3f (centre + d));
+  }
+  const pcl_holefill_tool::NearestPointTree tree (cloud, nullptr);
+  for (const auto &q : queries)
+  {
+    float best = std::numeric_limits<float>::infinity ();
+    for (const auto &p : cloud)
+      if (p.getVector3fMap ().allFinite ())
+        best = std::min (best, (p.getVector3fMap () - q).squaredNorm ());
+    float found_sqr = 0.f;
+    const int found = tree.nearest (q, found_sqr);
+    ASSERT_GE (found, 0);
+    // (the same distance up to the rounding of two ways of summing it)
+    EXPECT_NEAR (found_sqr, best, 1e-6f * best);
+    EXPECT_NEAR ((cloud[found].getVector3fMap () - q).squaredNorm (), best, 1e-6f * best);
+  }
+  // A subset: only its points are answers.
+  const pcl::Indices some = {10, 20, 30};
+  const pcl_holefill_tool::NearestPointTree few (cloud, &some);
+  float sqr = 0.f;
+  const int one = few.nearest (cloud[21].getVector3fMap (), sqr);
+  EXPECT_TRUE (one == 10 || one == 20 || one == 30);
+  const pcl::Indices none;
+  const pcl_holefill_tool::NearestPointTree empty (cloud, &none);
+  EXPECT_TRUE (empty.empty ());
+  EXPECT_EQ (empty.nearest (Eigen::Vector3f::Zero (), sqr), -1);
+  EXPECT_EQ (tree.nearest (Eigen::Vector3f::Constant (std::numeric_limits<float>::quiet_NaN ()), sqr), -1);
 }
 
 TEST_F (Command, SigmaNTakesAutoANumberOrSupAndTheReportTellsWhich)

@@ -41,10 +41,12 @@ prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, Prepa
   * point (its other fields copied from the nearest input point), and a
   * field "filled" (1 for filled points, 0 for the input). \a filtered is the
   * filter's output: the input points, then the fill; \a reports its reports
-  * (where each hole's filled points are, to search the input near them). */
+  * (where each hole's filled points are, to search the input near them);
+  * \a threads search side by side (0: all cores). */
 bool
 assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointNormal> &filtered,
-                const std::vector<pcl_holefill::HoleReport> &reports, pcl::PCLPointCloud2 &output, std::string &error);
+                const std::vector<pcl_holefill::HoleReport> &reports, unsigned int threads,
+                pcl::PCLPointCloud2 &output, std::string &error);
 
 /** \brief The output of -detect_only: the input rows unchanged, with a field
   * "hole_id" (int32): the hole's number (in the order of \a loops, holes

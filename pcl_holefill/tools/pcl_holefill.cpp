@@ -149,7 +149,8 @@ run (const Options &options)
     std::fprintf (stderr, "pcl_holefill: note: no hole found: the cloud is copied through\n");
 
   pcl::PCLPointCloud2 output;
-  if (!assembleOutput (prepared, filtered, filler.getReports (), output, error))
+  if (!assembleOutput (prepared, filtered, filler.getReports (), static_cast<unsigned int> (options.threads), output,
+                       error))
     return fail (error);
   if (!saveCloud (options.output, output, error))
     return fail (error);

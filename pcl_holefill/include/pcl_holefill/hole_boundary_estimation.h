@@ -228,9 +228,17 @@ private:
   /** True when a disc of diameter \a diameter, empty of points on this side
     * of the surface, touches usable point \a local from inside its empty
     * sector \a gap (tried at several angles within the sector: the sector's
-    * bisector on a ragged rim need not point at the hole's centre). */
+    * bisector on a ragged rim need not point at the hole's centre). \a nearest
+    * are its k nearest neighbours (local ids). */
   bool
-  emptyDiscTouches (int local, const detail::AngularGap &gap, float diameter, float pitch) const;
+  emptyDiscTouches (int local, const detail::AngularGap &gap, const std::vector<int> &nearest, float diameter,
+                    float pitch) const;
+
+  /** True when more than half of \a ids have normals within
+    * kMinPlainViewNormalCosine of usable point \a local's: the unfolding
+    * into its tangent plane can be trusted. */
+  bool
+  normalsAgree (int local, const std::vector<int> &ids) const;
 
   /** The normal the loop tracing uses for rim point \a local, given its
     * nearest neighbours \a ids: its own, or their mean normal when its own

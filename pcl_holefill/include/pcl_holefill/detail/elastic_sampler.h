@@ -238,10 +238,11 @@ public:
   contract (const Front &former, Front &next, ContractionStats &stats);
 
   /** \brief Equations (7)-(8), two rounds, then the final normal (eq. 1).
-    * False when the neighbourhood carries no weight. */
+    * False when the neighbourhood carries no weight. \a around receives the
+    * oriented points within r of the final position, nearest first. */
   bool
-  optimisePosition (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
-                    Eigen::Vector3f &normal) const;
+  optimisePosition (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal,
+                    Neighbourhood &around) const;
 
 private:
   PointCloudConstPtr input_;
@@ -307,9 +308,11 @@ private:
   /** The combination constraint of section 4.4: does a sample at \a position
     * lie past the tangent plane of a convex (below it) or concave (above it)
     * reference point within the constraint's reach, by more than the
-    * tolerance? Such a sample overshoots an edge the rim shows. */
+    * tolerance? Such a sample overshoots an edge the rim shows. \a around:
+    * the oriented points within r of \a position (optimisePosition's; the
+    * constraint's reach is at most r, and an unoriented point bounds nothing). */
   bool
-  breaksCombinationConstraint (const Eigen::Vector3f &position) const;
+  breaksCombinationConstraint (const Eigen::Vector3f &position, const Neighbourhood &around) const;
   /** Above one of the rim planes of setRimPlanes? */
   bool
   aboveRimPlanes (const Eigen::Vector3f &position) const;

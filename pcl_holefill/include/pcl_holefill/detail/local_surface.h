@@ -35,12 +35,14 @@ struct Neighbourhood
 {
   std::vector<Eigen::Vector3f> positions;
   std::vector<Eigen::Vector3f> normals;
+  std::vector<int> indices;  //!< in the searched cloud, when gathered by a search (else empty)
 
   void
   clear ()
   {
     positions.clear ();
     normals.clear ();
+    indices.clear ();
   }
   std::size_t
   size () const { return positions.size (); }

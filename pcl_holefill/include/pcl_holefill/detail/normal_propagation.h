@@ -82,6 +82,12 @@ public:
   void
   gatherNeighbourhood (const Eigen::Vector3f &position, Neighbourhood &neighbours, float radius = 0.f) const;
 
+  /** \brief What gatherNeighbourhood (position, neighbours) returns, taken
+    * from \a wider: a neighbourhood gathered with a larger radius around a
+    * point near \a position, that holds the ball of radius r around it. */
+  void
+  selectNeighbourhood (const Neighbourhood &wider, const Eigen::Vector3f &position, Neighbourhood &neighbours) const;
+
   /** \brief Equation (1) at \a position with reference normal \a reference_normal. */
   SurfaceEstimate
   computeNormal (const Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal) const;

@@ -10,7 +10,10 @@
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace pcl_holefill::detail
 {
@@ -50,6 +53,34 @@ NormalPropagation<PointT>::gatherNeighbourhood (const Eigen::Vector3f &position,
       continue;
     neighbours.positions.push_back (p.getVector3fMap ());
     neighbours.normals.push_back (p.getNormalVector3fMap ().normalized ());
+    neighbours.indices.push_back (i);
+  }
+}
+
+template <typename PointT> void
+NormalPropagation<PointT>::selectNeighbourhood (const Neighbourhood &wider, const Eigen::Vector3f &position,
+                                                Neighbourhood &neighbours) const
+{
+  // The test and the order of the search (VoxelHashSearch: d2 <= r^2 in
+  // float, sorted by d2), so that the estimates come out the same bit for bit.
+  thread_local std::vector<std::pair<float, int>> inside;
+  inside.clear ();
+  const float sqr = radius_ * radius_;
+  for (std::size_t i = 0; i < wider.size (); ++i)
+  {
+    const Eigen::Vector3f &p = wider.positions[i];
+    const float dx = p.x () - position.x (), dy = p.y () - position.y (), dz = p.z () - position.z ();
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 <= sqr)
+      inside.emplace_back (d2, static_cast<int> (i));
+  }
+  std::sort (inside.begin (), inside.end (), [] (const auto &a, const auto &b) { return a.first < b.first; });
+  neighbours.clear ();
+  for (const auto &[d2, i] : inside)
+  {
+    neighbours.positions.push_back (wider.positions[i]);
+    neighbours.normals.push_back (wider.normals[i]);
+    neighbours.indices.push_back (wider.indices[i]);
   }
 }
 

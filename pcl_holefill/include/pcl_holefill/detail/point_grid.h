@@ -142,6 +142,12 @@ private:
   CellSpan
   cell (int index) const;
 
+  /** Distance from (x, y, z) in cell (cx, cy, cz) to that cell's nearest
+    * face, within 0..cell size (0 in a clamped cell, whose box need not hold
+    * its points). */
+  float
+  faceMargin (float x, float y, float z, int cx, int cy, int cz) const;
+
   /** Visits the cells of the shell at Chebyshev distance \a ring around
     * (cx, cy, cz) and collects the points within sqrt(max_sqr) of query. */
   void

@@ -1005,7 +1005,9 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
       surroundings.rim.push_back (static_cast<int> (it - found.begin ()));
   }
   surroundings.search.reset (new VoxelHashSearch<PointT>);
-  surroundings.search->setCellSize (scale.radius);  // a radius-r query then reads a 3x3x3 block
+  // The widest frequent query is optimisePosition's, (1 + kGatherSlack) r:
+  // it then reads a 3x3x3 block of cells (a 5x5x5 one with cells of r).
+  surroundings.search->setCellSize ((1.f + detail::kGatherSlack) * scale.radius);
   surroundings.search->setNumberOfThreads (surroundings.threads);
   surroundings.search->setInputCloud (surroundings.cloud);
 }

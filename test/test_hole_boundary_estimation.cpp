@@ -142,6 +142,24 @@ TEST (HoleBoundaryEstimation, InjectedKdTreeGivesTheSameLoops)
   EXPECT_EQ (with_tree[0].indices, with_grid[0].indices);
 }
 
+TEST (HoleBoundaryEstimation, SemiAutomaticModeRefusesFeaturePointsOutsideTheCloud)
+{
+  // The message names the class and the point (its format once lacked the
+  // class name's argument: the point's index was read as a string).
+  const auto cut = shapes::cutHoles (shapes::cube ().sample (2000), {{{1, 1, 1}, 0.2}});
+  HoleBoundaryEstimation<pcl::PointNormal> est;
+  est.setInputCloud (cut.kept.makeShared ());
+  BoundaryLoop refined;
+  const int outside = static_cast<int> (cut.kept.size ());
+  testing::internal::CaptureStderr ();
+  EXPECT_FALSE (est.refineFeaturePoints ({0, outside}, refined));
+  const std::string message = testing::internal::GetCapturedStderr ();
+  EXPECT_NE (message.find ("HoleBoundaryEstimation::refineFeaturePoints] Feature point " + std::to_string (outside)),
+             std::string::npos)
+      << message;
+  EXPECT_TRUE (refined.indices.empty ());
+}
+
 TEST (HoleBoundaryEstimation, SemiAutomaticModeReproducesTheCornerLoop)
 {
   const auto cut = shapes::cutHoles (shapes::cube ().sample (9192), {{{1, 1, 1}, 0.2}});

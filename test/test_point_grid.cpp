@@ -8,7 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <random>
+#include <tuple>
 
 using pcl_holefill::detail::PointGrid;
 
@@ -111,6 +115,99 @@ TEST (PointGrid, IgnoresNonFiniteAndEmptyQueries)
   grid.nearestK (Eigen::Vector3f::Zero (), 3, found);
   EXPECT_TRUE (found.empty ());
   EXPECT_EQ (PointGrid::suggestCellSize ({}, 8), 0.f);
+}
+
+namespace
+{
+/** Z-order of two cells, by the dimension whose coordinates differ in the
+  * highest bit (the comparison of interleaved bits, without interleaving). */
+bool
+mortonLess (const std::array<std::int64_t, 3> &a, const std::array<std::int64_t, 3> &b)
+{
+  int dimension = 0;
+  std::uint64_t highest = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    const std::uint64_t differ = static_cast<std::uint64_t> (a[d] ^ b[d]);
+    // d wins over a lower dimension when its highest differing bit is at
+    // least as high (x < y && x < (x ^ y): x's highest bit is lower than y's).
+    const bool lower = differ < highest && differ < (differ ^ highest);
+    if (differ != 0 && !lower)
+    {
+      dimension = d;
+      highest = differ;
+    }
+  }
+  return a[dimension] < b[dimension];
+}
+}  // namespace
+
+TEST (PointGrid, SpatialOrderGoesCellByCellAlongTheZCurveThenByPosition)
+{
+  // Points on a wavy sheet around the origin (cell coordinates of both
+  // signs), repeated positions, and NaN / infinite ones in between: more
+  // than one sorting run's worth, so that 1 and 2 threads could differ.
+  std::vector<Eigen::Vector3f> points = randomPoints (150000, 11);
+  for (std::size_t i = 0; i < points.size (); ++i)
+  {
+    if (i % 997 == 0)
+      points[i].x () = std::nanf ("");
+    else if (i % 1009 == 0)
+      points[i].z () = std::numeric_limits<float>::infinity ();
+    else if (i % 101 == 0)
+      points[i] = points[i - 1];
+  }
+  const float cell = 0.01f;
+  const std::vector<int> order = PointGrid::spatialOrder (points, cell, 1);
+  EXPECT_EQ (PointGrid::spatialOrder (points, cell, 2), order);
+  ASSERT_EQ (order.size (), points.size ());
+  std::vector<int> sorted = order;
+  std::sort (sorted.begin (), sorted.end ());
+  for (std::size_t i = 0; i < sorted.size (); ++i)
+    ASSERT_EQ (sorted[i], static_cast<int> (i));  // a permutation
+  // The reference: cells in Z-order, then x, y, z, index; non-finite last, by index.
+  // (The grid multiplies by the cell's inverse, as here: dividing moves a
+  // few points on cell faces to the next cell.)
+  const float inverse = 1.f / cell;
+  const auto cellOf = [inverse] (const Eigen::Vector3f &p) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t> (std::floor (p.x () * inverse)) + (1 << 20),
+                                       static_cast<std::int64_t> (std::floor (p.y () * inverse)) + (1 << 20),
+                                       static_cast<std::int64_t> (std::floor (p.z () * inverse)) + (1 << 20)};
+  };
+  std::vector<int> expected (points.size ());
+  for (std::size_t i = 0; i < expected.size (); ++i)
+    expected[i] = static_cast<int> (i);
+  std::stable_sort (expected.begin (), expected.end (), [&] (int a, int b) {
+    const bool fa = points[a].allFinite (), fb = points[b].allFinite ();
+    if (fa != fb)
+      return fa;
+    if (!fa)
+      return a < b;
+    const auto ca = cellOf (points[a]), cb = cellOf (points[b]);
+    if (ca != cb)
+      return mortonLess (ca, cb);
+    const auto &p = points[a], &q = points[b];
+    return std::make_tuple (p.x (), p.y (), p.z (), a) < std::make_tuple (q.x (), q.y (), q.z (), b);
+  });
+  EXPECT_EQ (order, expected);
+}
+
+TEST (PointGrid, SuggestedCellHoldsTheAskedNeighboursOnAPlane)
+{
+  // n uniformly random points on a unit square: a disc of the suggested
+  // cell's radius should hold k of them (pi cell^2 n = k), up to the
+  // coarse cells along the square's border, which overstate its area.
+  for (const std::size_t n : {20000u, 200000u})
+  {
+    std::mt19937 rng (5);
+    std::uniform_real_distribution<float> u (0.f, 1.f);
+    std::vector<Eigen::Vector3f> points;
+    for (std::size_t i = 0; i < n; ++i)
+      points.emplace_back (u (rng), u (rng), 0.f);
+    const float cell = PointGrid::suggestCellSize (points, 16);
+    const float expected = std::sqrt (16.f / (3.14159265f * static_cast<float> (n)));
+    EXPECT_NEAR (cell, expected, 0.1f * expected) << n << " points";
+  }
 }
 
 TEST (VoxelHashSearch, IsAPclSearch)

@@ -53,6 +53,6 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   * only) for the points of its rim, -1 for every other point. */
 bool
 assembleDetection (const PreparedCloud &prepared, const std::vector<pcl_holefill::BoundaryLoop> &loops,
-                   pcl::PCLPointCloud2 &output, std::string &error);
+                   unsigned int threads, pcl::PCLPointCloud2 &output, std::string &error);
 
 }  // namespace pcl_holefill_tool

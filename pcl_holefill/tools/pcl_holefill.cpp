@@ -68,7 +68,8 @@ detectOnly (const Options &options, const PreparedCloud &prepared)
   estimation.compute (loops);
   std::string error;
   pcl::PCLPointCloud2 output;
-  if (!assembleDetection (prepared, loops, output, error) || !saveCloud (options.output, output, error))
+  if (!assembleDetection (prepared, loops, static_cast<unsigned int> (options.threads), output, error) ||
+      !saveCloud (options.output, output, error))
     return fail (error);
   const std::string holes_path = options.output + ".holes.txt";
   if (!writeHoles (holes_path, loops, error))

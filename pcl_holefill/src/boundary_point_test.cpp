@@ -112,14 +112,15 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
     flat[i] = Eigen::Vector2f (d.dot (u), d.dot (v));
     const float x = flat[i].x (), y = flat[i].y ();
     octants |= 1u << ((y < 0.f ? 4 : 0) + ((x < 0.f) != (y < 0.f) ? 2 : 0) + (std::abs (x) < std::abs (y) ? 1 : 0));
-  }
-  if (octants == 0xFFu)
-  {
-    // Every 45 degree sector holds a neighbour, so no gap reaches 90 degrees:
-    // the common case of an interior point, decided without sorting.
-    gap.angle = static_cast<float> (M_PI / 2.0);
-    gap.direction = u;
-    return gap;
+    if (octants == 0xFFu)
+    {
+      // Every 45 degree sector holds a neighbour, so no gap reaches 90
+      // degrees: the common case of an interior point, decided without
+      // sorting, and without unfolding the neighbours left.
+      gap.angle = static_cast<float> (M_PI / 2.0);
+      gap.direction = u;
+      return gap;
+    }
   }
   float length[64];
   float reach = 0.f;

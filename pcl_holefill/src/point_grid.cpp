@@ -46,39 +46,6 @@ constexpr struct
   }
 } lessByDistance;
 
-/** Sorts (key, index) pairs by key, keeping the order of equal keys: a
-  * least-significant-digit radix sort, skipping the digits in which all keys
-  * agree. Six passes over a million pairs, against a comparison sort's
-  * twenty that read the pairs out of order. */
-void
-sortByKey (std::vector<std::pair<std::uint64_t, int>> &keyed, int threads)
-{
-  if (keyed.size () < 2)
-    return;
-  constexpr int kDigitBits = 11;
-  constexpr std::uint64_t kDigitMask = (std::uint64_t (1) << kDigitBits) - 1;
-  std::uint64_t differ = 0;
-  for (const auto &entry : keyed)
-    differ |= entry.first ^ keyed.front ().first;
-  std::vector<std::pair<std::uint64_t, int>> buffer;
-  std::vector<std::size_t> start (kDigitMask + 2);
-  for (int shift = 0; shift < 64; shift += kDigitBits)
-  {
-    if (((differ >> shift) & kDigitMask) == 0)
-      continue;  // every key has this digit: the pass would change nothing
-    if (buffer.empty ())
-      resizeTouched (buffer, keyed.size (), threads);
-    std::fill (start.begin (), start.end (), 0);
-    for (const auto &entry : keyed)
-      ++start[((entry.first >> shift) & kDigitMask) + 1];
-    for (std::size_t d = 1; d < start.size (); ++d)
-      start[d] += start[d - 1];
-    for (const auto &entry : keyed)
-      buffer[start[(entry.first >> shift) & kDigitMask]++] = entry;
-    keyed.swap (buffer);
-  }
-}
-
 void
 keepNearest (std::vector<PointGrid::Neighbour> &neighbours, std::size_t count)
 {
@@ -610,21 +577,38 @@ PointGrid::spatialOrder (const std::vector<Eigen::Vector3f> &points, float cell_
       return p.z () < q.z ();
     return a.second < b.second;
   };
-  // Sorted by cell first, then the points of each cell by position: the
-  // order is total, so the result is the one sort of the whole would give.
-  sortByKey (keyed, threads);
+  // Sorted by cell first, runs side by side, then merged; then the points of
+  // each cell by position. Comparing positions only within a cell's few
+  // points spares the sort of a million points its reads of scattered
+  // positions. The order is total, so the result is the one sort of the
+  // whole would give. (A radix sort took 0.03 s less on a million points and
+  // 16 MB more memory, at the detection's peak.)
+  const auto by_cell = [] (const auto &a, const auto &b) { return a.first < b.first; };
+  const int runs = static_cast<int> (std::clamp<std::ptrdiff_t> (threads, 1, std::max<std::ptrdiff_t> (1, n / 65536)));
+  std::vector<std::ptrdiff_t> bounds (runs + 1);
+  for (int r = 0; r <= runs; ++r)
+    bounds[r] = n * r / runs;
+#pragma omp parallel for num_threads(runs) schedule(static, 1)
+  for (int r = 0; r < runs; ++r)
+    std::sort (keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], by_cell);
+  for (int r = 1; r < runs; ++r)
+    std::inplace_merge (keyed.begin (), keyed.begin () + bounds[r], keyed.begin () + bounds[r + 1], by_cell);
 #pragma omp parallel for num_threads(std::max (threads, 1)) schedule(static)
   for (std::ptrdiff_t i = 0; i < n; ++i)
   {
     // Each run of one cell, from its first element (whoever sees it). The
-    // non-finite points keep their index order: positions with a NaN do not
-    // order (a sort given them may read past the run).
-    if ((i > 0 && keyed[i - 1].first == keyed[i].first) || keyed[i].first == kNonFiniteKey)
+    // non-finite points go by index: positions with a NaN do not order (a
+    // sort given them may read past the run, and the order depended on the
+    // number of threads).
+    if (i > 0 && keyed[i - 1].first == keyed[i].first)
       continue;
     std::ptrdiff_t end = i + 1;
     while (end < n && keyed[end].first == keyed[i].first)
       ++end;
-    std::sort (keyed.begin () + i, keyed.begin () + end, before);
+    if (keyed[i].first == kNonFiniteKey)
+      std::sort (keyed.begin () + i, keyed.begin () + end, [] (const auto &a, const auto &b) { return a.second < b.second; });
+    else
+      std::sort (keyed.begin () + i, keyed.begin () + end, before);
   }
   std::vector<int> order;
   resizeTouched (order, points.size (), threads);

@@ -74,7 +74,6 @@ ElasticSampler<PointT>::optimisePosition (Eigen::Vector3f &position, const Eigen
   // quarter of the fill's time.
   const float slack = kGatherSlack * propagation_.getRadius ();
   Neighbourhood wider;
-  Neighbourhood &neighbours = around;
   Eigen::Vector3f p = position, gathered_at = position;
   propagation_.gatherNeighbourhood (gathered_at, wider, propagation_.getRadius () + slack);
   const auto gatherAround = [&] (const Eigen::Vector3f &q) {
@@ -83,19 +82,19 @@ ElasticSampler<PointT>::optimisePosition (Eigen::Vector3f &position, const Eigen
       gathered_at = q;
       propagation_.gatherNeighbourhood (gathered_at, wider, propagation_.getRadius () + slack);
     }
-    propagation_.selectNeighbourhood (wider, q, neighbours);
+    propagation_.selectNeighbourhood (wider, q, around);
   };
   // Two rounds of "normal, then offset along it" (the paper: enough in practice).
   for (int round = 0; round < 2; ++round)
   {
     gatherAround (p);
-    const SurfaceEstimate e = propagation_.computeNormal (neighbours, p, reference_normal);
+    const SurfaceEstimate e = propagation_.computeNormal (around, p, reference_normal);
     if (!e.valid)
       return false;
-    p += e.normal * positionOffset (neighbours, p, e, propagation_.kernel ());  // eq. (8)
+    p += e.normal * positionOffset (around, p, e, propagation_.kernel ());  // eq. (8)
   }
   gatherAround (p);
-  const SurfaceEstimate e = propagation_.computeNormal (neighbours, p, reference_normal);
+  const SurfaceEstimate e = propagation_.computeNormal (around, p, reference_normal);
   if (!e.valid || !p.allFinite ())
     return false;
   position = p;

@@ -258,14 +258,16 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   // than the hole it stands for.
   const float test_radius = 0.5f * diameter - detail::kRimRaggedness * pitch;
   const bool unfolding_trusted = normalsAgree (local, nearest);
+  const auto touches = [&] (const std::vector<int> &ids) {
+    return detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (), normals_.data (),
+                                     ids.data (), static_cast<int> (ids.size ()), diameter, test_radius);
+  };
   // A point of the k nearest inside every disc is inside it among all
   // neighbours too (more points only fill discs), so the wide search below
   // is skipped. On uniformly random samples a fifth of all points pass the
   // angular-gap test and two thirds of those fail here: the search of a
   // disc-sized ball for each (a 7x7x7 block of cells) was half the detection.
-  if (unfolding_trusted &&
-      !detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (), normals_.data (),
-                                 nearest.data (), static_cast<int> (nearest.size ()), diameter, test_radius))
+  if (unfolding_trusted && !touches (nearest))
     return false;
   thread_local std::vector<int> ids;
   // The same again within a ball reaching just past the discs' centres
@@ -274,14 +276,11 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   if (unfolding_trusted)
   {
     usableWithin (local, detail::kMiddleReach * diameter, ids);
-    if (!detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (), normals_.data (),
-                                   ids.data (), static_cast<int> (ids.size ()), diameter, test_radius))
+    if (!touches (ids))
       return false;
   }
   usableWithin (local, diameter, ids);
-  const int count = static_cast<int> (ids.size ());
-  if (detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (), normals_.data (),
-                                ids.data (), count, diameter, test_radius))
+  if (touches (ids))
     return true;
   // The unfolding trusts the neighbours' normals. Noisy ones (PCA normals of
   // noisy points tilt by 0.3-1.4 rad at a rim) scatter the unfolded points
@@ -289,6 +288,7 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   // plane fitted to the disc's neighbourhood. At 0.5 % noise with PCA normals
   // that found 24 of 26 rim points of a smooth hole where the unfolding found
   // 14, and left the rim of a hole at a corner to the unfolding.
+  const int count = static_cast<int> (ids.size ());
   if (unfolding_trusted || count < 3)
     return false;
   thread_local std::vector<Eigen::Vector3f> around;

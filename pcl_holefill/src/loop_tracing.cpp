@@ -72,6 +72,15 @@ pathPositions (const std::vector<int> &path, const std::vector<Eigen::Vector3f> 
 // stuck across from home (a fandisk hole at noise 0.5 %, 4 % less covered).
 constexpr float kMaxHomeShareWhenStuck = 0.9f;
 
+// A walk back within a link of home closes only once it has been well away:
+// home no farther than this share of the farthest it went. A rim about a
+// link in radius (the apex of a pyramid at 0.3 % noise, 6 links round) was
+// within a link of home after a quarter of the way, zigzagging between two
+// rows: that quarter closed as a loop of its own, too small for a hole, and
+// the rest was filled as a hole missing a quarter of its rim (90 % covered).
+// On a circle 0.6 means at least 290 degrees walked.
+constexpr float kMaxHomeShareToClose = 0.6f;
+
 // Two rim points whose normals differ by more than 120 degrees lie on the
 // two sides of a thin part: the walk neither steps nor closes across it.
 // The end of a 0.04-thick fin is 5 pitches across, near the 4.5-pitch link:
@@ -191,7 +200,7 @@ walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
     const float home = (positions[start] - positions[current]).norm ();
     farthest = std::max (farthest, home);
     const bool same_side = normals[current].dot (normals[start]) >= kMinLinkNormalCosine;
-    if (travelled > 2.f * link && home <= link && same_side)
+    if (travelled > 2.f * link && home <= link && home <= kMaxHomeShareToClose * farthest && same_side)
     {
       closed = true;
       break;

@@ -207,6 +207,11 @@ private:
     float min_radius = 0.f;  //!< r never shrinks below this
     float bound = 0.f;       //!< the fill stays this close to the centre
     int max_passes = 0;      //!< bound on passes for this hole
+    /** How far from the centre the searches that measured the rim looked
+      * (infinite when one found fewer than it asked for): a search that
+      * holds every point within this, and within bound + radius, gives this
+      * hole exactly what a search over the whole cloud gives. */
+    float searched_reach = 0.f;
   };
 
   /** A hole's surroundings, copied: the fill grows this cloud, never the input. */
@@ -223,7 +228,8 @@ private:
     * the new points go to \a filled. */
   void
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
-            PointCloud &filled, HoleReport &report, int threads) const;
+            const pcl::Indices &rim, const HoleScale &scale, PointCloud &filled, HoleReport &report,
+            int threads) const;
 
   /** Steps 2-4 of Algorithm 1 for one hole: its surroundings and their
     * normals, the sampler, the passes until termination, the closure check
@@ -323,6 +329,30 @@ private:
   keepFacesApartAtCreases (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
                            const HoleScale &scale, const HoleReport &report);
 
+  /** Step 1 of Algorithm 1: the loop's usable points (\a rim) and the hole's
+    * scale. False when fewer than 3 are usable or they have no spacing. */
+  bool
+  measureHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
+               pcl::Indices &rim, HoleScale &scale) const;
+
+  /** The loop's points with a usable normal (the rim the fill works from). */
+  static pcl::Indices
+  usableRim (const PointCloud &working, const BoundaryLoop &loop);
+
+  /** A ball (centre, radius) holding every point the fill of \a loop can
+    * search, estimated from the detection's pitch and spacing with a margin;
+    * radius 0 when the loop has no pitch (a given loop). */
+  Eigen::Vector4f
+  estimatedReach (const PointCloud &working, const BoundaryLoop &loop) const;
+
+  /** Points the fill of \a holes can reach, from the detection's pitch and
+    * spacing with a margin: balls about the rims' centroids (\a reaches:
+    * centre and radius each). Null when the holes reach much of the cloud,
+    * are many, or were given without a pitch: then the whole cloud. */
+  pcl::IndicesPtr
+  pointsNearHoles (const PointCloud &working, const std::vector<BoundaryLoop> &holes,
+                   std::vector<Eigen::Vector4f> &reaches) const;
+
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool
   measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
@@ -398,8 +428,8 @@ private:
 
   /** Every hole filled (side by side), its points in \a fills, reports_ set. */
   void
-  fillHoles (const PointCloud &working, pcl::search::Search<PointT> &search, const std::vector<BoundaryLoop> &holes,
-             std::vector<PointCloud> &fills);
+  fillHoles (const PointCloudConstPtr &working, pcl::search::Search<PointT> &search,
+             const std::vector<BoundaryLoop> &holes, std::vector<PointCloud> &fills);
 
   float radius_ = parameters::kRadius.default_value;
   float shrink_ = parameters::kRadiusShrinkFactor.default_value;

@@ -224,8 +224,9 @@ private:
     int threads = 1;                               //!< for the work within this hole
   };
 
-  /** Fills one hole of \a working (Algorithm 1 for one loop) with \a threads;
-    * the new points go to \a filled. */
+  /** Fills one hole of \a working with \a threads, its \a rim and \a scale
+    * measured (step 1, measureHole): steps 2-5 of Algorithm 1 for one loop.
+    * The new points go to \a filled. */
   void
   fillHole (const PointCloud &working, pcl::search::Search<PointT> &search, const BoundaryLoop &loop,
             const pcl::Indices &rim, const HoleScale &scale, PointCloud &filled, HoleReport &report,

@@ -354,6 +354,15 @@ private:
   pointsNearHoles (const PointCloud &working, const std::vector<BoundaryLoop> &holes,
                    std::vector<Eigen::Vector4f> &reaches) const;
 
+  /** The rim's centroid and its largest distance from it, into \a scale. */
+  static void
+  measureRimExtent (const PointCloud &working, const pcl::Indices &rim, HoleScale &scale);
+
+  /** d_eq, r, the constraint's reach, r's floor, the bound and the pass
+    * bound, from \a scale's spacing, pitch and rim radius. */
+  void
+  deriveSizes (HoleScale &scale) const;
+
   /** The hole's scale: centre, spacing h, pitch, d_eq, r, the bound. False without any spacing. */
   bool
   measureRim (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,

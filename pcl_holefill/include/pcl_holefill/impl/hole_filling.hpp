@@ -860,8 +860,10 @@ HoleFilling<PointT>::fillHoles (const PointCloudConstPtr &working, pcl::search::
     search.setInputCloud (working, near);
     measure_all ();
     for (std::size_t h = 0; h < holes.size (); ++h)
-      whole = whole || (usable[h] && !((reaches[h].head<3> () - scales[h].centre).norm () + scales[h].searched_reach <
-                                       detail::kNearHolesSafety * reaches[h].w ()));
+    {
+      const float looked = (reaches[h].head<3> () - scales[h].centre).norm () + scales[h].searched_reach;
+      whole = whole || (usable[h] && !(looked < detail::kNearHolesSafety * reaches[h].w ()));
+    }
   }
   if (whole)
   {
@@ -964,10 +966,7 @@ template <typename PointT> bool
 HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<PointT> &search,
                                  const pcl::Indices &rim, HoleScale &scale) const
 {
-  scale.centre.setZero ();
-  for (const auto i : rim)
-    scale.centre += working[i].getVector3fMap ();
-  scale.centre /= static_cast<float> (rim.size ());
+  measureRimExtent (working, rim, scale);
   // h, the mean nearest-neighbour distance, sets the reach of the local
   // fits; the pitch, sqrt(area per point), sets the spacing of the fill so
   // that it is as dense as the input (the two differ by 2x on random samples).
@@ -979,7 +978,6 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
   std::vector<int> ids;
   for (const auto i : rim)
   {
-    scale.rim_radius = std::max (scale.rim_radius, (working[i].getVector3fMap () - scale.centre).norm ());
     const int asked = detail::kPitchNeighbours + 1;
     search.nearestKSearch (working[i], asked, found, sqr_distances);
     const float looked = static_cast<int> (found.size ()) < asked
@@ -1014,6 +1012,27 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
   scale.spacing = static_cast<float> (spacing_sum / pitches.size ());
   std::nth_element (pitches.begin (), pitches.begin () + pitches.size () / 2, pitches.end ());
   scale.pitch = pitches[pitches.size () / 2];
+  deriveSizes (scale);
+  // gatherSurroundings looks this far too.
+  scale.searched_reach = std::max (scale.searched_reach, scale.bound + scale.radius);
+  return scale.d_eq > 0.f && std::isfinite (scale.d_eq);
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::measureRimExtent (const PointCloud &working, const pcl::Indices &rim, HoleScale &scale)
+{
+  scale.centre.setZero ();
+  for (const auto i : rim)
+    scale.centre += working[i].getVector3fMap ();
+  scale.centre /= static_cast<float> (rim.size ());
+  scale.rim_radius = 0.f;
+  for (const auto i : rim)
+    scale.rim_radius = std::max (scale.rim_radius, (working[i].getVector3fMap () - scale.centre).norm ());
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::deriveSizes (HoleScale &scale) const
+{
   const float h = scale.spacing;
   scale.d_eq = sigma_r_ > 0.f ? detail::ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
                               : spacing_factor_ * scale.pitch;
@@ -1029,9 +1048,6 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
   scale.max_passes = max_passes_ > 0 ? max_passes_
                                      : detail::kAutoPassesSlack +
                                            static_cast<int> (std::ceil (2.f * 2.f * scale.rim_radius / scale.d_eq));
-  // gatherSurroundings looks this far too.
-  scale.searched_reach = std::max (scale.searched_reach, scale.bound + scale.radius);
-  return scale.d_eq > 0.f && std::isfinite (scale.d_eq);
 }
 
 template <typename PointT> void
@@ -1663,23 +1679,17 @@ HoleFilling<PointT>::usableRim (const PointCloud &working, const BoundaryLoop &l
 template <typename PointT> Eigen::Vector4f
 HoleFilling<PointT>::estimatedReach (const PointCloud &working, const BoundaryLoop &loop) const
 {
-  // measureRim's centre and rim radius; its pitch and spacing, and what
-  // they set, as the detection measured them, times a margin.
+  // measureRim's centre and rim radius; its spacing and pitch as the
+  // detection measured them, times a margin; what they set, as measureRim sets it.
   const pcl::Indices rim = usableRim (working, loop);
   if (rim.empty () || !(loop.pitch > 0.f) || !(loop.mean_spacing > 0.f))
     return Eigen::Vector4f::Zero ();  // given loops carry no pitch
-  Eigen::Vector3f centre = Eigen::Vector3f::Zero ();
-  for (const auto i : rim)
-    centre += working[i].getVector3fMap ();
-  centre /= static_cast<float> (rim.size ());
-  float rim_radius = 0.f;
-  for (const auto i : rim)
-    rim_radius = std::max (rim_radius, (working[i].getVector3fMap () - centre).norm ());
-  const float p = detail::kNearHolesMargin * loop.pitch, h = detail::kNearHolesMargin * loop.mean_spacing;
-  const float d_eq = sigma_r_ > 0.f ? detail::ElasticSampler<PointT>::equilibriumDistanceFromSigmaR (sigma_r_)
-                                    : spacing_factor_ * p;
-  const float radius = radius_ > 0.f ? radius_ : std::max ({4.f * h, 3.5f * p, 2.5f * d_eq});
-  return {centre.x (), centre.y (), centre.z (), detail::kBoundScale * rim_radius + 2.f * d_eq + radius};
+  HoleScale scale;
+  measureRimExtent (working, rim, scale);
+  scale.spacing = detail::kNearHolesMargin * loop.mean_spacing;
+  scale.pitch = detail::kNearHolesMargin * loop.pitch;
+  deriveSizes (scale);
+  return {scale.centre.x (), scale.centre.y (), scale.centre.z (), scale.bound + scale.radius};
 }
 
 template <typename PointT> pcl::IndicesPtr

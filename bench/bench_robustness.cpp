@@ -2,14 +2,16 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  *
- * bench_robustness [POINTS] [FILTER] [fast]: every model of the corpus x
+ * bench_robustness [POINTS] [FILTER] [fast] [strays]: every model of the corpus x
  * every sampling x noise (0, 0.1, 0.3, 0.5 % of the diagonal) x normals
  * (exact; estimated on noisy clouds and on clean random ones), holes cut
  * with known ground truth; prints one row per case: holes found / cut, false
  * holes, coverage, max and mean error to the true surface, points added
  * outside the holes, seconds, and beside them PCL MovingLeastSquares and PCL
  * Poisson on the same input with exact normals (left out with "fast": they
- * take 5 s a case, pcl_holefill 0.05 s).
+ * take 5 s a case, pcl_holefill 0.05 s). With "strays", the clean cases
+ * instead, each with 0.5 % of its points moved 1 to 4 pitches off the surface
+ * (corpus::addStrays), exact and estimated normals.
  */
 #include "corpus.h"
 #include "reference_methods.h"
@@ -63,6 +65,7 @@ main (int argc, char **argv)
   const std::size_t points = argc > 1 ? std::strtoul (argv[1], nullptr, 10) : 20000;
   const std::string filter = argc > 2 ? argv[2] : "";
   const bool references = !(argc > 3 && std::string (argv[3]) == "fast");
+  const double strays = argc > 4 && std::string (argv[4]) == "strays" ? 0.005 : 0.0;
   std::printf ("| model | sampling | noise | normals | holes found / cut | false holes | reported closed | closed but open | "
                "open but covered | coverage | density | NN spacing ratio | max error | mean error | added outside | seconds "
                "| MLS coverage | MLS max error | Poisson coverage | Poisson max error |\n");
@@ -73,7 +76,7 @@ main (int argc, char **argv)
       for (const double noise : {0.0, 0.001, 0.003, 0.005})
         for (const bool estimated : {false, true})
         {
-          if (estimated && noise == 0.0 && sampling != corpus::Sampling::kRandom)
+          if (strays > 0.0 ? noise > 0.0 : estimated && noise == 0.0 && sampling != corpus::Sampling::kRandom)
             continue;
           corpus::Case c;
           c.shape = shape;
@@ -81,6 +84,7 @@ main (int argc, char **argv)
           c.sampling = sampling;
           c.noise = noise;
           c.estimated = estimated;
+          c.strays = strays;
           c.holes = corpus::holesOf (shape, points);
           c.name = shape.name + "/" + corpus::toString (sampling);
           if (!filter.empty () && c.name.find (filter) == std::string::npos)

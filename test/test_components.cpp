@@ -308,23 +308,38 @@ TEST (CreaseNormals, ExactAndSmoothNormalsAreLeftAlone)
     EXPECT_FALSE (refitAt (on_sphere, sphere_normals, i, 0.03f, 0.0005f, n)) << i;
 }
 
+namespace
+{
+const Eigen::Vector3f kSphereCentre (0.f, 0.f, -0.5f);
+
+/** The 24 nearest neighbours of the origin among random samples of the
+  * sphere of radius 0.5 about kSphereCentre (the origin's normal is +z),
+  * all on the side x <= 0: a rim point's one-sided neighbourhood. */
+std::vector<Eigen::Vector3f>
+oneSidedSphereNeighbours (unsigned seed)
+{
+  std::mt19937 random (seed);
+  std::normal_distribution<float> gauss;
+  std::vector<Eigen::Vector3f> all;
+  while (all.size () < 4000)
+  {
+    const Eigen::Vector3f on =
+        kSphereCentre + 0.5f * Eigen::Vector3f (gauss (random), gauss (random), gauss (random)).normalized ();
+    if (on.z () > -0.1f && on.x () <= 0.f)
+      all.push_back (on);
+  }
+  std::sort (all.begin (), all.end (), [&] (const auto &a, const auto &b) { return a.norm () < b.norm (); });
+  return {all.begin (), all.begin () + 24};
+}
+}  // namespace
+
 TEST (RimNormals, AQuadricRemovesTheTiltOfAOneSidedNeighbourhood)
 {
   // A rim point on a sphere of radius 0.5 (pitch 0.0125, random samples),
   // its 24 nearest neighbours all on the side away from the hole (x < 0 in
   // the tangent plane): PCA fits their chord, and its normal leans away.
-  std::mt19937 random (3);
-  std::normal_distribution<float> gauss;
-  const Eigen::Vector3f centre (0.f, 0.f, -0.5f), point (0.f, 0.f, 0.f), exact = Eigen::Vector3f::UnitZ ();
-  std::vector<Eigen::Vector3f> all;
-  while (all.size () < 4000)
-  {
-    const Eigen::Vector3f on = centre + 0.5f * Eigen::Vector3f (gauss (random), gauss (random), gauss (random)).normalized ();
-    if (on.z () > -0.1f && on.x () <= 0.f)
-      all.push_back (on);
-  }
-  std::sort (all.begin (), all.end (), [&] (const auto &a, const auto &b) { return a.norm () < b.norm (); });
-  std::vector<Eigen::Vector3f> near (all.begin (), all.begin () + 24);
+  const Eigen::Vector3f point (0.f, 0.f, 0.f), exact = Eigen::Vector3f::UnitZ ();
+  const std::vector<Eigen::Vector3f> near = oneSidedSphereNeighbours (3);
   std::vector<Eigen::Vector3f> with_point (near);
   with_point.push_back (point);
   const Eigen::Vector3f pca_at_point = pcaNormal (with_point, with_point.size () - 1, 16, exact);
@@ -339,6 +354,30 @@ TEST (RimNormals, AQuadricRemovesTheTiltOfAOneSidedNeighbourhood)
   EXPECT_LT (degrees (detail::quadricNormal (point, exact, flat.data (), static_cast<int> (flat.size ())), exact), 0.01f);
   // Too few neighbours to fit: the normal comes back as it was.
   EXPECT_EQ (detail::quadricNormal (point, pca_at_point, near.data (), 5), pca_at_point);
+}
+
+TEST (RimNormals, AStrayPointOnTheHoleSideDoesNotTiltTheQuadric)
+{
+  // The same one-sided neighbourhood of a rim point on a sphere of radius
+  // 0.5, exact normal, plus one stray point on the hole's side (x > 0),
+  // 0.6 pitch below the surface: the only neighbour there, so a least-squares
+  // quadric bends through it (its leverage is near 1) and its residual in
+  // that fit is small. Its residual in the fit without it is not.
+  const Eigen::Vector3f centre (kSphereCentre), point (0.f, 0.f, 0.f), exact = Eigen::Vector3f::UnitZ ();
+  std::vector<Eigen::Vector3f> near = oneSidedSphereNeighbours (5);
+  const float pitch = 0.0125f;
+  const Eigen::Vector3f on_surface = centre + 0.5f * Eigen::Vector3f (1.3f * pitch, 0.f, 0.5f).normalized ();
+  near.push_back (on_surface - 0.6f * pitch * (on_surface - centre).normalized ());
+  const float allowance = 0.1f * 0.5f * pitch;  // the fill's: 0.1 mean spacing (about half a pitch here)
+  const Eigen::Vector3f plain = detail::quadricNormal (point, exact, near.data (), static_cast<int> (near.size ()));
+  const Eigen::Vector3f robust =
+      detail::quadricNormal (point, exact, near.data (), static_cast<int> (near.size ()), allowance);
+  EXPECT_GT (degrees (plain, exact), 5.f);    // reached: 12.6 degrees
+  EXPECT_LT (degrees (robust, exact), 0.05f);  // reached: under 0.001 degrees
+  // Without the stray, the allowance leaves every neighbour in.
+  near.pop_back ();
+  EXPECT_EQ (detail::quadricNormal (point, exact, near.data (), static_cast<int> (near.size ()), allowance),
+             detail::quadricNormal (point, exact, near.data (), static_cast<int> (near.size ())));
 }
 
 TEST (NoisyNormals, AWideFitIsSmootherAndItsResidualTellsACrease)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace pcl_holefill::detail
 {
@@ -23,6 +24,10 @@ constexpr float kMinGainRatio = 1.2f;
 // The plane's neighbours must span a surface, not lie along a line (the
 // ratio of the middle to the largest eigenvalue of their scatter).
 constexpr float kMinSpread = 1e-3f;
+// A quadric fit's neighbour is an outlier when its residual exceeds this many
+// median absolute residuals (as standard deviations of Gaussian noise) ...
+constexpr float kOutlierResidualMads = 4.f;
+constexpr float kMadToSigma = 1.4826f;
 
 int
 countOnPlane (const Eigen::Vector3f &point, const Eigen::Vector3f &normal, const Eigen::Vector3f *positions,
@@ -82,39 +87,116 @@ refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   return true;
 }
 
-Eigen::Vector3f
-quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *positions,
-               int count)
+namespace
 {
-  constexpr int kCoefficients = 6;
+constexpr int kQuadricCoefficients = 6;
+using QuadricCoefficients = Eigen::Matrix<float, kQuadricCoefficients, 1>;
+using QuadricMatrix = Eigen::Matrix<float, kQuadricCoefficients, kQuadricCoefficients>;
+using QuadricSolver = Eigen::LDLT<QuadricMatrix>;
+
+/** The terms of the height field at the tangent coordinates (s, t). */
+QuadricCoefficients
+quadricTerms (float s, float t)
+{
+  QuadricCoefficients row;
+  row << 1.f, s, t, s * s, s * t, t * t;
+  return row;
+}
+
+/** The normal equations of the height field h(s, t) over the positions that
+  * \a use marks (all when empty), coordinates over \a reach, solved; false
+  * when ill-posed. */
+bool
+fitHeightField (const Eigen::Vector3f &point, const Eigen::Vector3f &normal, const Eigen::Vector3f &u,
+                const Eigen::Vector3f &v, const Eigen::Vector3f *positions, int count, float reach,
+                const std::vector<char> &use, QuadricSolver &solver, QuadricCoefficients &c)
+{
   // Twice the coefficients at least, and a well-posed fit (smallest over
   // largest pivot of the normal equations, coordinates scaled to the reach).
-  constexpr int kMinNeighbours = 2 * kCoefficients;
+  constexpr int kMinNeighbours = 2 * kQuadricCoefficients;
   constexpr float kMinConditioning = 1e-5f;
-  if (count < kMinNeighbours)
-    return unit_normal;
+  QuadricMatrix lhs = QuadricMatrix::Zero ();
+  QuadricCoefficients rhs = QuadricCoefficients::Zero ();
+  int used = 0;
+  for (int k = 0; k < count; ++k)
+  {
+    if (!use.empty () && !use[k])
+      continue;
+    const Eigen::Vector3f d = positions[k] - point;
+    const QuadricCoefficients row = quadricTerms (d.dot (u) / reach, d.dot (v) / reach);
+    lhs += row * row.transpose ();
+    rhs += row * d.dot (normal);
+    ++used;
+  }
+  if (used < kMinNeighbours)
+    return false;
+  solver.compute (lhs);
+  const auto pivots = solver.vectorD ().cwiseAbs ();
+  if (solver.info () != Eigen::Success || !(pivots.minCoeff () > kMinConditioning * pivots.maxCoeff ()))
+    return false;
+  c = solver.solve (rhs);
+  return c.allFinite ();
+}
+
+/** Marks in \a use the positions that the field fitted without them would
+  * pass within the allowance; returns how many it left out. The residual
+  * of a fit that held the point is not enough: a lone point on one side of
+  * a one-sided neighbourhood pulls the quadric through itself (its
+  * leverage h is near 1), so each residual is divided by 1 - h, which
+  * makes it the residual of the fit without that point. */
+int
+keepNearField (const Eigen::Vector3f &point, const Eigen::Vector3f &normal, const Eigen::Vector3f &u,
+               const Eigen::Vector3f &v, const Eigen::Vector3f *positions, int count, float reach,
+               const QuadricSolver &solver, const QuadricCoefficients &c, float min_allowance, std::vector<char> &use)
+{
+  constexpr float kMinShareLeft = 1e-2f;  // of a residual's leverage, against 0 / 0
+  std::vector<float> residual (count);
+  for (int k = 0; k < count; ++k)
+  {
+    const Eigen::Vector3f d = positions[k] - point;
+    const QuadricCoefficients row = quadricTerms (d.dot (u) / reach, d.dot (v) / reach);
+    const float leverage = row.dot (solver.solve (row));
+    residual[k] = std::abs (d.dot (normal) - row.dot (c)) / std::max (1.f - leverage, kMinShareLeft);
+  }
+  std::vector<float> sorted (residual);
+  const auto middle = sorted.begin () + count / 2;
+  std::nth_element (sorted.begin (), middle, sorted.end ());
+  const float allowance = std::max (min_allowance, kOutlierResidualMads * kMadToSigma * *middle);
+  use.assign (count, 1);
+  int left_out = 0;
+  for (int k = 0; k < count; ++k)
+    if (!(residual[k] <= allowance))
+    {
+      use[k] = 0;
+      ++left_out;
+    }
+  return left_out;
+}
+}  // namespace
+
+Eigen::Vector3f
+quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *positions,
+               int count, float outlier_allowance)
+{
   const Eigen::Vector3f u = unit_normal.unitOrthogonal (), v = unit_normal.cross (u);
   float reach = 0.f;
   for (int k = 0; k < count; ++k)
     reach = std::max (reach, (positions[k] - point).norm ());
   if (!(reach > 0.f))
     return unit_normal;
-  Eigen::Matrix<float, kCoefficients, kCoefficients> lhs = Eigen::Matrix<float, kCoefficients, kCoefficients>::Zero ();
-  Eigen::Matrix<float, kCoefficients, 1> rhs = Eigen::Matrix<float, kCoefficients, 1>::Zero ();
-  for (int k = 0; k < count; ++k)
-  {
-    const Eigen::Vector3f d = positions[k] - point;
-    const float s = d.dot (u) / reach, t = d.dot (v) / reach;
-    Eigen::Matrix<float, kCoefficients, 1> row;
-    row << 1.f, s, t, s * s, s * t, t * t;
-    lhs += row * row.transpose ();
-    rhs += row * d.dot (unit_normal);
-  }
-  const Eigen::LDLT<Eigen::Matrix<float, kCoefficients, kCoefficients>> solver (lhs);
-  const auto pivots = solver.vectorD ().cwiseAbs ();
-  if (solver.info () != Eigen::Success || !(pivots.minCoeff () > kMinConditioning * pivots.maxCoeff ()))
+  std::vector<char> use;
+  QuadricSolver solver;
+  QuadricCoefficients c;
+  if (!fitHeightField (point, unit_normal, u, v, positions, count, reach, use, solver, c))
     return unit_normal;
-  const Eigen::Matrix<float, kCoefficients, 1> c = solver.solve (rhs);
+  // One least-squares fit follows a stray point: a single outlier four
+  // pitches off the surface among 30 neighbours tilted a rim normal by 12
+  // degrees, and the rim's tangent plane then cut the fill of a sphere cap
+  // short. Those far from the first fit are left out of a second.
+  if (outlier_allowance > 0.f &&
+      keepNearField (point, unit_normal, u, v, positions, count, reach, solver, c, outlier_allowance, use) > 0 &&
+      !fitHeightField (point, unit_normal, u, v, positions, count, reach, use, solver, c))
+    return unit_normal;
   // The height field's gradient at the point, per unit length.
   const Eigen::Vector3f refitted = unit_normal - (c[1] / reach) * u - (c[2] / reach) * v;
   return refitted.allFinite () ? refitted.normalized () : unit_normal;

@@ -300,6 +300,23 @@ addNoise (Cloud &cloud, const Shape &shape, double fraction, unsigned seed)
 }
 
 void
+addStrays (Cloud &cloud, double fraction, double pitch, unsigned seed)
+{
+  if (!(fraction > 0.0))
+    return;
+  std::mt19937 rng (seed);
+  std::bernoulli_distribution chosen (fraction);
+  std::uniform_real_distribution<float> offset (1.f, 4.f);
+  std::bernoulli_distribution outward (0.5);
+  for (auto &p : cloud)
+    if (chosen (rng))
+    {
+      const float distance = offset (rng) * static_cast<float> (pitch);
+      p.getVector3fMap () += (outward (rng) ? distance : -distance) * p.getNormalVector3fMap ();
+    }
+}
+
+void
 estimateNormals (Cloud &cloud)
 {
   Cloud::Ptr input (new Cloud (cloud));
@@ -423,6 +440,7 @@ build (const Case &c)
 {
   Cloud cloud = sampleSurface (c.shape, c.points, c.sampling, c.seed);
   addNoise (cloud, c.shape, c.noise, c.seed + 101);
+  addStrays (cloud, c.strays, pitch (c.shape, c.points), c.seed + 202);
   if (c.estimated)
     estimateNormals (cloud);
   return pcl_holefill::shapes::cutHoles (cloud, c.holes);

@@ -58,6 +58,13 @@ diagonal (const Shape &shape);
 void
 addNoise (Cloud &cloud, const Shape &shape, double fraction, unsigned seed);
 
+/** \brief Moves a \a fraction of the points, chosen at random, off the
+  * surface along their exact normal by 1 to 4 pitches (either side, uniform),
+  * as the stray returns of a scanner (mixed pixels, reflections); their
+  * normals stay the surface's. */
+void
+addStrays (Cloud &cloud, double fraction, double pitch, unsigned seed);
+
 /** \brief Replaces the normals by PCL's NormalEstimation (k = 16), each
   * oriented to agree with the exact normal it replaces. */
 void
@@ -83,6 +90,7 @@ struct Case
   Sampling sampling = Sampling::kPoisson;
   double noise = 0.0;      //!< fraction of the bounding-box diagonal
   bool estimated = false;  //!< normals from NormalEstimation instead of exact
+  double strays = 0.0;     //!< fraction of the points moved off the surface (addStrays)
   std::vector<Ball> holes;
   unsigned seed = 1;
 };

@@ -270,10 +270,12 @@ private:
 
   /** Refits by a quadric over \a neighbours (detail::quadricNormal) the
     * normals of the input points near the rim that lie on one smooth piece
-    * (all of them when \a one_piece: the rim's wide fits showed no crease);
-    * returns how many changed. Only the fill's copy changes. */
+    * (all of them when \a one_piece: the rim's wide fits showed no crease),
+    * leaving out neighbours farther than \a tolerance (and the fit's own
+    * spread) from it; returns how many changed. Only the fill's copy changes. */
   std::size_t
-  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours, bool one_piece) const;
+  removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours, bool one_piece,
+                       float tolerance) const;
 
   /** Replaces, on a noisy rim, the fill's copy of the normals within
     * kNoisyRimReachInPitches of the rim by PCA over more neighbours

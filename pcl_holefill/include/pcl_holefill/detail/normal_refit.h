@@ -60,10 +60,14 @@ refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   * accordingly (a cap 32 pitches across came out 0.014, 1.1 pitches, too
   * high). The quadric takes the curvature out; its gradient at the point
   * is the tilt to remove. \a positions and the point are expected on one
-  * smooth piece (no crease among them). */
+  * smooth piece (no crease among them).
+  *
+  * With \a outlier_allowance > 0 (cloud units), neighbours farther from the
+  * fitted surface than both that and 4 robust standard deviations of the
+  * residuals are left out and the quadric is fitted again. */
 Eigen::Vector3f
 quadricNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *positions,
-               int count);
+               int count, float outlier_allowance = 0.f);
 
 /** \brief A plane fitted by PCA: its unit normal (on either side), the
   * centroid it passes through, and the variance of the points along the

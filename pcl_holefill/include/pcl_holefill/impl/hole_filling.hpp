@@ -1467,7 +1467,7 @@ HoleFilling<PointT>::warnAbout (const BoundaryLoop &loop, const HoleScale &scale
 
 template <typename PointT> std::size_t
 HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const HoleScale &scale, int neighbours,
-                                          bool one_piece) const
+                                          bool one_piece, float tolerance) const
 {
   PointCloud &cloud = *surroundings.cloud;
   // The points whose neighbourhoods the hole makes one-sided: those near the rim.
@@ -1482,7 +1482,7 @@ HoleFilling<PointT>::removeRimNormalBias (Surroundings &surroundings, const Hole
       return;  // one smooth piece only: creases are refitCreaseNormals' work
     const Eigen::Vector3f own = cloud[i].getNormalVector3fMap ().normalized ();
     refitted[i] = detail::quadricNormal (cloud[i].getVector3fMap (), own, positions.data (),
-                                         static_cast<int> (positions.size ()));
+                                         static_cast<int> (positions.size ()), tolerance);
     changed[i] = refitted[i] != own ? 1 : 0;
   });
   return detail::writeNormals (refitted, changed, cloud);
@@ -1520,9 +1520,11 @@ HoleFilling<PointT>::refitNormals (Surroundings &surroundings, const HoleScale &
   const bool one_piece = smoothed > 0 && creases == 0;
   std::size_t tilts = 0;
   if (one_piece)
-    tilts = removeRimNormalBias (surroundings, scale, detail::smoothRimQuadricNeighbours (noise, scale.spacing), true);
+    tilts = removeRimNormalBias (surroundings, scale, detail::smoothRimQuadricNeighbours (noise, scale.spacing), true,
+                                 tolerance);
   else if (crease_refit && (!noisy || rough))
-    tilts = removeRimNormalBias (surroundings, scale, detail::quadricNeighbours (noise, scale.spacing), false);
+    tilts = removeRimNormalBias (surroundings, scale, detail::quadricNeighbours (noise, scale.spacing), false,
+                                 tolerance);
   return smoothed + creases + tilts;
 }
 

@@ -9,6 +9,7 @@
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/local_surface.h>
 #include <pcl_holefill/detail/normal_propagation.h>
+#include <pcl_holefill/detail/stray_points.h>
 #include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
 
@@ -354,6 +355,30 @@ TEST (RimNormals, AQuadricRemovesTheTiltOfAOneSidedNeighbourhood)
   EXPECT_LT (degrees (detail::quadricNormal (point, exact, flat.data (), static_cast<int> (flat.size ())), exact), 0.01f);
   // Too few neighbours to fit: the normal comes back as it was.
   EXPECT_EQ (detail::quadricNormal (point, pca_at_point, near.data (), 5), pca_at_point);
+}
+
+TEST (StrayPoints, OffTheSurfaceMarkedWhereverTheDensity)
+{
+  // Uniformly random samples of a plane, 4 times as dense (by area) on x < 0
+  // as on x > 0, pitch 0.01 on the sparse side; a few points above it.
+  std::mt19937 random (7);
+  std::uniform_real_distribution<float> unit (0.f, 1.f);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < 40000; ++i)
+    points.emplace_back (-unit (random), unit (random), 0.f);
+  for (int i = 0; i < 10000; ++i)
+    points.emplace_back (unit (random), unit (random), 0.f);
+  const float pitch = 0.01f;
+  const std::vector<Eigen::Vector3f> strays = {{0.5f, 0.5f, 2.5f * pitch}, {-0.5f, 0.5f, -2.f * pitch},
+                                               {0.2f, 0.7f, 4.f * pitch}};
+  points.insert (points.end (), strays.begin (), strays.end ());
+  const std::vector<char> marked = detail::markStrayPoints (points, 2);
+  for (std::size_t i = 0; i + strays.size () < points.size (); ++i)
+    EXPECT_EQ (marked[i], 0) << points[i].transpose ();  // reached: none of the 50,000
+  for (std::size_t i = points.size () - strays.size (); i < points.size (); ++i)
+    EXPECT_EQ (marked[i], 1) << points[i].transpose ();
+  // The same marks on one thread.
+  EXPECT_EQ (detail::markStrayPoints (points, 1), marked);
 }
 
 TEST (RimNormals, AStrayPointOnTheHoleSideDoesNotTiltTheQuadric)

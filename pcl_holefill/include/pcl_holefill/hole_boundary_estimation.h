@@ -217,10 +217,16 @@ private:
   findRimPoints (std::vector<float> &pitch_of);
 
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
-    * size touches; the others border gaps of the sampling. Sets the kept
-    * points' walk_normal from the same neighbours. */
+    * size touches; the others border gaps of the sampling. Stray points
+    * (detail::isStrayPoint: off the surface, their gap is their own) go too.
+    * Sets the kept points' walk_normal from the same neighbours. */
   void
   keepHoleSizedGaps (RimCandidates &rim, const std::vector<float> &pitch_of) const;
+
+  /** A rim point of nearest-neighbour distance \a spacing and neighbours
+    * \a ids off the surface (detail::isStrayPoint over their pitch_of)? */
+  static bool
+  isStray (float spacing, const std::vector<int> &ids, const std::vector<float> &pitch_of);
 
   /** Stage 3 for one traced loop (members index \a rim): the midpoint
     * refinement of section 3.3, its measures, and hole or border. */

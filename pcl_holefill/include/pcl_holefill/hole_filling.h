@@ -375,6 +375,11 @@ private:
   gatherSurroundings (const PointCloud &working, pcl::search::Search<PointT> &search, const pcl::Indices &rim,
                       const HoleScale &scale, Surroundings &surroundings) const;
 
+  /** Removes from \a found (sorted cloud indices) the stray points
+    * (detail::markStrayPoints) that are not on the \a rim. */
+  static void
+  leaveOutStrayPoints (const PointCloud &working, const pcl::Indices &rim, int threads, pcl::Indices &found);
+
   /** The sampler's parameters for this hole, from the scale and the rim's noise. */
   void
   setUpSampler (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,

@@ -6,6 +6,7 @@
 
 #include <pcl_holefill/bilateral_preprocessor.h>
 #include <pcl_holefill/detail/normal_refit.h>
+#include <pcl_holefill/detail/stray_points.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/hole_filling.h>
@@ -1062,6 +1063,7 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
   std::vector<float> sqr_distances;
   search.radiusSearch (centre, scale.bound + scale.radius, found, sqr_distances);
   std::sort (found.begin (), found.end ());  // a deterministic order, whatever the search
+  leaveOutStrayPoints (working, rim, surroundings.threads, found);
   // The local index of found[k] is k: the sorted list itself maps cloud
   // indices to local ones.
   surroundings.cloud->resize (found.size ());
@@ -1081,6 +1083,28 @@ HoleFilling<PointT>::gatherSurroundings (const PointCloud &working, pcl::search:
   surroundings.search->setCellSize ((1.f + detail::kGatherSlack) * scale.radius);
   surroundings.search->setNumberOfThreads (surroundings.threads);
   surroundings.search->setInputCloud (surroundings.cloud);
+}
+
+template <typename PointT> void
+HoleFilling<PointT>::leaveOutStrayPoints (const PointCloud &working, const pcl::Indices &rim, int threads,
+                                          pcl::Indices &found)
+{
+  // Judged among the gathered points alone, so that the fill reads nothing
+  // beyond them (the search may hold only the points near the holes).
+  std::vector<Eigen::Vector3f> positions (found.size ());
+  for (std::size_t k = 0; k < found.size (); ++k)
+    positions[k] = working[found[k]].getVector3fMap ();
+  const std::vector<char> stray = detail::markStrayPoints (positions, threads);
+  pcl::Indices sorted_rim (rim);
+  std::sort (sorted_rim.begin (), sorted_rim.end ());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < found.size (); ++k)
+    if (!stray[k] || std::binary_search (sorted_rim.begin (), sorted_rim.end (), found[k]))
+      found[kept++] = found[k];
+  if (kept < found.size ())
+    PCL_DEBUG ("[pcl_holefill::HoleFilling::leaveOutStrayPoints] %zu stray points left out of the fill's support\n",
+               found.size () - kept);
+  found.resize (kept);
 }
 
 template <typename PointT> void

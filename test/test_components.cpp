@@ -369,8 +369,12 @@ TEST (StrayPoints, OffTheSurfaceMarkedWhereverTheDensity)
   for (int i = 0; i < 10000; ++i)
     points.emplace_back (unit (random), unit (random), 0.f);
   const float pitch = 0.01f;
-  const std::vector<Eigen::Vector3f> strays = {{0.5f, 0.5f, 2.5f * pitch}, {-0.5f, 0.5f, -2.f * pitch},
-                                               {0.2f, 0.7f, 4.f * pitch}};
+  // The last two a pair, 1.5 pitches apart: each other's nearest neighbour.
+  const std::vector<Eigen::Vector3f> strays = {{0.5f, 0.5f, 2.5f * pitch},
+                                               {-0.5f, 0.5f, -2.f * pitch},
+                                               {0.2f, 0.7f, 4.f * pitch},
+                                               {0.3f, 0.3f, 3.f * pitch},
+                                               {0.3f + 1.5f * pitch, 0.3f, 3.f * pitch}};
   points.insert (points.end (), strays.begin (), strays.end ());
   const std::vector<char> marked = detail::markStrayPoints (points, 2);
   for (std::size_t i = 0; i + strays.size () < points.size (); ++i)

@@ -18,15 +18,18 @@ namespace
 constexpr int kStrayNeighbours = 8;
 // A stray's nearest neighbour is farther than this many pitches of its neighbours.
 constexpr float kStrayPitches = 2.f;
+// ... or its second nearest this many more (isStrayPoint: a pair of strays).
+constexpr float kPairMargin = 0.5f;
 }  // namespace
 
 bool
-isStrayPoint (float nearest, float *around, int count, float pitches)
+isStrayPoint (float nearest, float second, float *around, int count, float pitches)
 {
   if (count == 0 || !std::isfinite (nearest))
     return false;
   std::nth_element (around, around + count / 2, around + count);
-  return nearest > pitches * around[count / 2];
+  const float pitch = around[count / 2];
+  return nearest > pitches * pitch || (std::isfinite (second) && second > (pitches + kPairMargin) * pitch);
 }
 
 std::vector<char>
@@ -39,6 +42,7 @@ markStrayPoints (const std::vector<Eigen::Vector3f> &positions, int threads)
   PointGrid grid (PointGrid::suggestCellSize (positions, kStrayNeighbours));
   grid.build (positions, nullptr, threads);
   std::vector<float> nearest (n, std::numeric_limits<float>::infinity ()), pitch (n, 0.f);
+  std::vector<float> second (n, std::numeric_limits<float>::infinity ());
   std::vector<int> neighbours (n * kStrayNeighbours, -1);
   grid.forEachNearestK (kStrayNeighbours, threads, [&] (int i, const PointGrid::Neighbour *found, int count) {
     float farthest = 0.f;
@@ -46,7 +50,11 @@ markStrayPoints (const std::vector<Eigen::Vector3f> &positions, int threads)
     {
       neighbours[static_cast<std::size_t> (i) * kStrayNeighbours + k] = found[k].id;
       if (found[k].sqr_distance > 0.f)  // a repeated position says nothing of the spacing
-        nearest[i] = std::min (nearest[i], std::sqrt (found[k].sqr_distance));
+      {
+        const float d = std::sqrt (found[k].sqr_distance);
+        second[i] = std::min (second[i], std::max (nearest[i], d));
+        nearest[i] = std::min (nearest[i], d);
+      }
       farthest = std::max (farthest, found[k].sqr_distance);
     }
     pitch[i] = samplingPitch (farthest, count, 0.f);
@@ -62,7 +70,7 @@ markStrayPoints (const std::vector<Eigen::Vector3f> &positions, int threads)
       if (j >= 0)
         around[count++] = pitch[j];
     }
-    stray[i] = isStrayPoint (nearest[i], around, count, kStrayPitches) ? 1 : 0;
+    stray[i] = isStrayPoint (nearest[i], second[i], around, count, kStrayPitches) ? 1 : 0;
   }
   return stray;
 }

@@ -172,6 +172,7 @@ private:
     int local;        //!< usable point
     detail::AngularGap gap;   //!< its widest empty sector
     float spacing;    //!< distance to its nearest distinct neighbour
+    float second_spacing = 0.f;  //!< ... and to its second nearest (infinite without one)
     Eigen::Vector3f walk_normal = Eigen::Vector3f::Zero ();  //!< the loop tracing's normal (tracingNormal)
     std::size_t nearest_at = 0;  //!< its k nearest: RimCandidates::nearest from here ...
     int nearest_count = 0;       //!< ... this many, nearest first
@@ -223,10 +224,10 @@ private:
   void
   keepHoleSizedGaps (RimCandidates &rim, const std::vector<float> &pitch_of) const;
 
-  /** A rim point of nearest-neighbour distance \a spacing and neighbours
-    * \a ids off the surface (detail::isStrayPoint over their pitch_of)? */
+  /** Is rim \a point, of neighbours \a ids, off the surface
+    * (detail::isStrayPoint over their pitch_of)? */
   static bool
-  isStray (float spacing, const std::vector<int> &ids, const std::vector<float> &pitch_of);
+  isStray (const RimPoint &point, const std::vector<int> &ids, const std::vector<float> &pitch_of);
 
   /** Stage 3 for one traced loop (members index \a rim): the midpoint
     * refinement of section 3.3, its measures, and hole or border. */

@@ -10,10 +10,11 @@
 
 namespace pcl_holefill::detail
 {
-/** \brief Is a point whose nearest neighbour lies at \a nearest a stray,
-  * given the sampling pitches (samplingPitch) at its \a count neighbours,
-  * \a around (reordered)? It is when that neighbour is farther than
-  * \a pitches times their median pitch.
+/** \brief Is a point whose nearest and second nearest neighbours lie at
+  * \a nearest and \a second a stray, given the sampling pitches
+  * (samplingPitch) at its \a count neighbours, \a around (reordered)? It is
+  * when the nearest is farther than \a pitches times their median pitch, or
+  * the second farther than that plus half a pitch (a pair of strays).
   *
   * A scanner's stray return (a mixed pixel, a reflection) lies off the
   * surface: its nearest neighbour is at least as far as its offset, while
@@ -21,13 +22,17 @@ namespace pcl_holefill::detail
   * hole, or on its rim (they see the hole's side empty too), were points of
   * the surface to the fill, which grew through them at their offset: with
   * 0.5 % of the points moved 1-4 pitches off, 15 of 108 clean corpus cases
-  * had max errors of 1.3-4.2 pitches. On uniformly random samples of a plane
-  * (the closest neighbours of any sampler), 0 to 4 of 50,000 points of the
-  * surface pass the test; strays pass from about 2 pitches off. The pitch
-  * of the neighbours, not the cloud's, keeps the sparse parts of a cloud of
-  * varying density. */
+  * had max errors of 1.3-4.2 pitches. Two strays next to each other (one
+  * case of those: two points of one scan line, 3.8 pitches inside a
+  * cylinder) are each other's nearest neighbour; the second nearest is on
+  * the surface again. On uniformly random samples of a plane (the closest
+  * neighbours of any sampler), the nearest neighbour lies past 2 pitches for
+  * 1 point in 290,000 (exp(-4 pi)) and the second for 1 in 21,000, past 2.5
+  * pitches for 1 in 16 million: hence the half pitch more for the pair. The
+  * pitch of the neighbours, not the cloud's, keeps the sparse parts of a
+  * cloud of varying density. */
 bool
-isStrayPoint (float nearest, float *around, int count, float pitches);
+isStrayPoint (float nearest, float second, float *around, int count, float pitches);
 
 /** \brief Marks (1) the stray points among \a positions (isStrayPoint, over
   * the 8 nearest neighbours). The same marks for any \a threads. */

@@ -366,11 +366,14 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     if (count == 0)
       return;
     // The nearest distinct neighbour: duplicates say nothing about spacing.
-    float nearest = std::numeric_limits<float>::max (), farthest = 0.f;
+    float nearest = std::numeric_limits<float>::max (), second = nearest, farthest = 0.f;
     for (int j = 0; j < count; ++j)
     {
       if (d2[j] > 0.f)
+      {
+        second = std::min (second, std::max (nearest, d2[j]));
         nearest = std::min (nearest, d2[j]);
+      }
       farthest = std::max (farthest, d2[j]);
     }
     const float spacing = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
@@ -390,6 +393,8 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     std::sort (nearest_first, nearest_first + count);
     std::lock_guard<std::mutex> lock (rim_mutex);
     RimPoint point{static_cast<int> (i), gap, spacing};
+    point.second_spacing = second < std::numeric_limits<float>::max () ? std::sqrt (second)
+                                                                      : std::numeric_limits<float>::infinity ();
     point.nearest_at = rim.nearest.size ();
     point.nearest_count = count;
     for (int j = 0; j < count; ++j)
@@ -434,7 +439,8 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
 }
 
 template <typename PointT> bool
-HoleBoundaryEstimation<PointT>::isStray (float spacing, const std::vector<int> &ids, const std::vector<float> &pitch_of)
+HoleBoundaryEstimation<PointT>::isStray (const RimPoint &point, const std::vector<int> &ids,
+                                         const std::vector<float> &pitch_of)
 {
   // A scanner's stray next to a hole sees the hole's side empty too, and a
   // loop through it put a point 4 pitches off the surface on the rim, from
@@ -445,7 +451,7 @@ HoleBoundaryEstimation<PointT>::isStray (float spacing, const std::vector<int> &
   for (const int j : ids)
     if (count < 64)
       around[count++] = pitch_of[j];
-  return detail::isStrayPoint (spacing, around, count, detail::kRimStrayPitches);
+  return detail::isStrayPoint (point.spacing, point.second_spacing, around, count, detail::kRimStrayPitches);
 }
 
 template <typename PointT> void
@@ -464,7 +470,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
     for (const int j : ids)
       pitch += pitch_of[j];
     pitch /= static_cast<float> (ids.size () + 1);
-    if (isStray (rim_points[r].spacing, ids, pitch_of))
+    if (isStray (rim_points[r], ids, pitch_of))
       continue;
     const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
     keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch) ? 1 : 0;

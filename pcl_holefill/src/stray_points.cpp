@@ -41,20 +41,15 @@ markStrayPoints (const std::vector<Eigen::Vector3f> &positions, int threads)
     return stray;
   PointGrid grid (PointGrid::suggestCellSize (positions, kStrayNeighbours));
   grid.build (positions, nullptr, threads);
-  std::vector<float> nearest (n, std::numeric_limits<float>::infinity ()), pitch (n, 0.f);
-  std::vector<float> second (n, std::numeric_limits<float>::infinity ());
+  std::vector<NearestTwo> nearest (n);
+  std::vector<float> pitch (n, 0.f);
   std::vector<int> neighbours (n * kStrayNeighbours, -1);
   grid.forEachNearestK (kStrayNeighbours, threads, [&] (int i, const PointGrid::Neighbour *found, int count) {
     float farthest = 0.f;
     for (int k = 0; k < count; ++k)
     {
       neighbours[static_cast<std::size_t> (i) * kStrayNeighbours + k] = found[k].id;
-      if (found[k].sqr_distance > 0.f)  // a repeated position says nothing of the spacing
-      {
-        const float d = std::sqrt (found[k].sqr_distance);
-        second[i] = std::min (second[i], std::max (nearest[i], d));
-        nearest[i] = std::min (nearest[i], d);
-      }
+      nearest[i].add (found[k].sqr_distance);
       farthest = std::max (farthest, found[k].sqr_distance);
     }
     pitch[i] = samplingPitch (farthest, count, 0.f);
@@ -70,7 +65,10 @@ markStrayPoints (const std::vector<Eigen::Vector3f> &positions, int threads)
       if (j >= 0)
         around[count++] = pitch[j];
     }
-    stray[i] = isStrayPoint (nearest[i], second[i], around, count, kStrayPitches) ? 1 : 0;
+    stray[i] = isStrayPoint (std::sqrt (nearest[i].nearest), std::sqrt (nearest[i].second), around, count,
+                             kStrayPitches)
+                   ? 1
+                   : 0;
   }
   return stray;
 }

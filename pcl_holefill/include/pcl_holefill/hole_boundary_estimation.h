@@ -172,7 +172,7 @@ private:
     int local;        //!< usable point
     detail::AngularGap gap;   //!< its widest empty sector
     float spacing;    //!< distance to its nearest distinct neighbour
-    float second_spacing = 0.f;  //!< ... and to its second nearest (infinite without one)
+    float second_spacing;  //!< ... and to its second nearest (infinite without one)
     Eigen::Vector3f walk_normal = Eigen::Vector3f::Zero ();  //!< the loop tracing's normal (tracingNormal)
     std::size_t nearest_at = 0;  //!< its k nearest: RimCandidates::nearest from here ...
     int nearest_count = 0;       //!< ... this many, nearest first

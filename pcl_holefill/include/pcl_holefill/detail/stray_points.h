@@ -6,10 +6,30 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace pcl_holefill::detail
 {
+/** \brief The two smallest distinct (non-zero) squared distances among a
+  * point's neighbours, infinite until seen: a repeated position says nothing
+  * of the spacing. Feeds isStrayPoint (as distances). */
+struct NearestTwo
+{
+  float nearest = std::numeric_limits<float>::infinity ();
+  float second = std::numeric_limits<float>::infinity ();
+
+  void
+  add (float sqr_distance)
+  {
+    if (!(sqr_distance > 0.f))
+      return;
+    second = std::min (second, std::max (nearest, sqr_distance));
+    nearest = std::min (nearest, sqr_distance);
+  }
+};
+
 /** \brief Is a point whose nearest and second nearest neighbours lie at
   * \a nearest and \a second a stray, given the sampling pitches
   * (samplingPitch) at its \a count neighbours, \a around (reordered)? It is

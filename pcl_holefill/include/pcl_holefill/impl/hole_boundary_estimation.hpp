@@ -365,18 +365,14 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
     if (count == 0)
       return;
-    // The nearest distinct neighbour: duplicates say nothing about spacing.
-    float nearest = std::numeric_limits<float>::max (), second = nearest, farthest = 0.f;
+    detail::NearestTwo nearest;
+    float farthest = 0.f;
     for (int j = 0; j < count; ++j)
     {
-      if (d2[j] > 0.f)
-      {
-        second = std::min (second, std::max (nearest, d2[j]));
-        nearest = std::min (nearest, d2[j]);
-      }
+      nearest.add (d2[j]);
       farthest = std::max (farthest, d2[j]);
     }
-    const float spacing = nearest < std::numeric_limits<float>::max () ? std::sqrt (nearest) : 0.f;
+    const float spacing = std::isfinite (nearest.nearest) ? std::sqrt (nearest.nearest) : 0.f;
     spacing_of[i] = spacing;
     const detail::AngularGap gap =
         detail::largestAngularGap (positions_[i], normals_[i], positions_.data (), normals_.data (), ids, count);
@@ -392,9 +388,7 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
       nearest_first[j] = {d2[j], ids[j]};
     std::sort (nearest_first, nearest_first + count);
     std::lock_guard<std::mutex> lock (rim_mutex);
-    RimPoint point{static_cast<int> (i), gap, spacing};
-    point.second_spacing = second < std::numeric_limits<float>::max () ? std::sqrt (second)
-                                                                      : std::numeric_limits<float>::infinity ();
+    RimPoint point{static_cast<int> (i), gap, spacing, std::sqrt (nearest.second)};
     point.nearest_at = rim.nearest.size ();
     point.nearest_count = count;
     for (int j = 0; j < count; ++j)
@@ -466,12 +460,12 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
     const int local = rim_points[r].local;
     const auto first = rim.nearest.begin () + static_cast<std::ptrdiff_t> (rim_points[r].nearest_at);
     ids.assign (first, first + rim_points[r].nearest_count);
+    if (isStray (rim_points[r], ids, pitch_of))
+      continue;
     float pitch = pitch_of[local];
     for (const int j : ids)
       pitch += pitch_of[j];
     pitch /= static_cast<float> (ids.size () + 1);
-    if (isStray (rim_points[r], ids, pitch_of))
-      continue;
     const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
     keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch) ? 1 : 0;
     if (keep[r])

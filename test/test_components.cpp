@@ -32,6 +32,20 @@ searchOver (const Cloud::Ptr &cloud)
   search->setInputCloud (cloud);
   return search;
 }
+
+/** Sets up \a sampler with the sharp setting (sigma_n 0.1) over a cloud of spacing \a h. */
+void
+sharpOnAPlane (detail::ElasticSampler<pcl::PointNormal> &sampler, const Cloud::Ptr &cloud, float h, float d_eq)
+{
+  sampler.setInputCloud (cloud);
+  sampler.setSearchMethod (searchOver (cloud));
+  sampler.setRadius (5.f * h);
+  sampler.setSigmaD (2.5f * h);
+  sampler.setSigmaN (0.1f);
+  sampler.setEquilibriumDistance (d_eq);
+  sampler.setConstraintTolerance (0.1f * h);
+  sampler.setCurvatureSignTolerance (0.1f * h);
+}
 }  // namespace
 
 TEST (NormalPropagation, SmallSigmaNKeepsToTheReferenceSideOfAnEdge)
@@ -157,14 +171,7 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
                                    Eigen::Vector3f::UnitZ ()});
   }
   detail::ElasticSampler<pcl::PointNormal> sampler;
-  sampler.setInputCloud (cloud);
-  sampler.setSearchMethod (searchOver (cloud));
-  sampler.setRadius (5.f * h);
-  sampler.setSigmaD (2.5f * h);
-  sampler.setSigmaN (0.1f);
-  sampler.setEquilibriumDistance (1.5f * h);
-  sampler.setConstraintTolerance (0.1f * h);
-  sampler.setCurvatureSignTolerance (0.1f * h);
+  sharpOnAPlane (sampler, cloud, h, 1.5f * h);
   detail::Front next;
   detail::ContractionStats stats;
   ASSERT_TRUE (sampler.contract (former, next, stats));
@@ -184,6 +191,36 @@ TEST (ElasticSampler, OnePassMovesACircularFrontInwardByTheEquilibriumDistance)
   EXPECT_NEAR (static_cast<float> (next[0].vertices.size ()), expected, 0.1f * expected + 1.f);
   // The paper's eq. (6): sigma_r^2 ln(1e4).
   EXPECT_NEAR (detail::ElasticSampler<pcl::PointNormal>::equilibriumDistanceFromSigmaR (0.1f), 0.01f * std::log (1e4f), 1e-6f);
+}
+
+// A rim of random samples has gaps of 3 d_eq between neighbours. The front
+// must not be cut there (only where it meets another piece of boundary): a
+// cut left a seam from the rim to the centre of a large hole.
+TEST (ElasticSampler, AGapBetweenRimNeighboursDoesNotCutTheFront)
+{
+  const auto cut = shapes::cutHoles (shapes::flatPatch ().sample (6000), {{{0.5, 0.5, 0.5}, 0.2}});
+  Cloud::Ptr cloud (new Cloud (cut.kept));
+  const float h = static_cast<float> (shapes::meanSpacing (cut.kept));
+  const float d_eq = 1.5f * h;
+  // Vertices 0.8 d_eq apart on the rim circle, but 3.5 d_eq between two of them.
+  detail::Front former (1);
+  former[0].closed = true;
+  const float step = 0.8f * d_eq / 0.2f, wide = 3.5f * d_eq / 0.2f;
+  for (float a = 0.f; a < 2.f * static_cast<float> (M_PI) - 0.5f * step; a += (former[0].vertices.size () == 20 ? wide : step))
+    former[0].vertices.push_back ({Eigen::Vector3f (0.5f + 0.2f * std::cos (a), 0.5f + 0.2f * std::sin (a), 0.5f),
+                                   Eigen::Vector3f::UnitZ ()});
+  detail::ElasticSampler<pcl::PointNormal> sampler;
+  sharpOnAPlane (sampler, cloud, h, d_eq);
+  detail::Front next;
+  detail::ContractionStats stats;
+  ASSERT_TRUE (sampler.contract (former, next, stats));
+  EXPECT_EQ (stats.kept_control_points, stats.former_boundary_points);
+  ASSERT_EQ (next.size (), 1u);
+  EXPECT_TRUE (next[0].closed);
+  // The new boundary runs on at d_eq spacing across the gap.
+  const auto &v = next[0].vertices;
+  for (std::size_t k = 0; k < v.size (); ++k)
+    EXPECT_LT ((v[(k + 1) % v.size ()].position - v[k].position).norm (), 1.5f * d_eq) << k;
 }
 
 // The enclosure test of a closed hole's rim (ElasticSampler::setRim).

@@ -273,16 +273,41 @@ private:
   std::vector<Eigen::Vector3f>
   contractingDirections (const FrontChain &chain) const;
 
+  /** A control point that survived, and whether a candidate discarded
+    * between it and the one kept before it (cyclically on a closed chain)
+    * met another piece of boundary or stopped at the shape. */
+  struct ControlPoint
+  {
+    FrontVertex vertex;
+    bool met_before = false;
+  };
+
   /** Section 4.1, steps 2-3 (eq. 5-8): the control points that survive;
     * \a base is the id of the chain's first vertex in the former grid. */
-  std::vector<FrontVertex>
+  std::vector<ControlPoint>
   controlPoints (const FrontChain &chain, const std::vector<Eigen::Vector3f> &directions, int base,
                  const PassState &pass, ContractionStats &stats) const;
 
+  /** Whether \a chain is a rim of input points (not sampled) along which
+    * neighbours' normals agree within kSmoothRimCosine: no edge crosses it. */
+  static bool
+  smoothRim (const FrontChain &chain);
+
+  /** Whether the discarded candidate at \a position, from vertex \a i of
+    * \a chain (the former grid's id base + i), met another piece of
+    * boundary: a former point within the repulsion reach (\a too_close: the
+    * duplicate reach) that is not one of the chain's own vertices near i
+    * (\a arc: arc length at each vertex); when \a too_close, also any
+    * existing point there that is no former vertex. */
+  bool
+  metOtherBoundary (const Eigen::Vector3f &position, const FrontChain &chain, const std::vector<float> &arc, int i,
+                    int base, const PassState &pass, bool too_close) const;
+
   /** Section 4.1: the control curve C, as runs of control points; \a wraps
-    * tells that the single run is a closed loop. */
+    * tells that the single run is a closed loop. \a sampled_chain: the
+    * former chain's vertices are d_eq apart (FrontChain::sampled). */
   std::vector<std::vector<FrontVertex>>
-  controlCurve (const std::vector<FrontVertex> &controls, bool closed_chain, bool &wraps) const;
+  controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool sampled_chain, bool &wraps) const;
 
   /** Section 4.2: points every d_eq of arc length along a run (unplaced),
     * with the normal of the control point before each. */

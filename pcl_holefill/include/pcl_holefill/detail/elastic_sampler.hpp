@@ -23,6 +23,23 @@ constexpr float kDuplicateReach = 0.5f;
 // Consecutive control points or samples further apart than this (in d_eq)
 // belong to different pieces of boundary: the front has met itself between them.
 constexpr float kChainBreak = 3.f;
+// ... unless the chain is a rim of input points (not yet sampled) and every
+// candidate discarded between the two was stopped only by the chain's own
+// vertices within this arc length (in d_eq) of its source: the rim of a
+// randomly sampled cloud has gaps of 3 d_eq and clusters of points that
+// repel their neighbours' candidates, and a cut there left a seam from the
+// rim to the centre of a large hole. Such a gap is bridged up to kMaxBridge
+// d_eq, between control points whose normals agree within kBridgeCosine;
+// the samples along the bridge are placed and checked like any other.
+// A sampled chain is d_eq apart: a gap in its control points is a meeting.
+constexpr float kOwnChainArc = 3.f;
+constexpr float kMaxBridge = 6.f;
+constexpr float kBridgeCosine = 0.95f;
+// ... and only on a rim whose neighbours' normals all agree within this
+// (37 degrees): on a rim that crosses an edge of a part (a cube's corner, a
+// bore's edge on PCA normals) a bridge, even along one face, changed where
+// the fronts went (bored cube, random, PCA normals: covered 0.93 -> 0.89).
+constexpr float kSmoothRimCosine = 0.8f;
 // Half-width of the stencil that gives the boundary tangent.
 constexpr int kTangentStencil = 2;
 // cos 45 degrees: a reference point's normal within this of the constraint's
@@ -258,7 +275,7 @@ ElasticSampler<PointT>::contractingDirections (const FrontChain &chain) const
   return directions;
 }
 
-template <typename PointT> std::vector<FrontVertex>
+template <typename PointT> std::vector<typename ElasticSampler<PointT>::ControlPoint>
 ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vector<Eigen::Vector3f> &directions,
                                        int base, const PassState &pass, ContractionStats &stats) const
 {
@@ -268,8 +285,12 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
   // chain order.
   const float d_eq = equilibrium_distance_;
   const int m = static_cast<int> (chain.vertices.size ());
+  std::vector<float> arc (m, 0.f);
+  for (int i = 1; i < m; ++i)
+    arc[i] = arc[i - 1] + (chain.vertices[i].position - chain.vertices[i - 1].position).norm ();
   std::vector<FrontVertex> candidates (m);
   std::vector<Verdict> verdicts (m, Verdict::kUnsupported);
+  std::vector<char> met (m, 0);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
   for (int i = 0; i < m; ++i)
   {
@@ -285,32 +306,100 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
       if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
         verdicts[i] = Verdict::kRepelled;
     }
+    // Repelled or too close: by the chain's own neighbours, or by another
+    // piece of boundary. Any other verdict stopped the front at the shape.
+    if (verdicts[i] == Verdict::kRepelled || verdicts[i] == Verdict::kTooClose)
+      met[i] = metOtherBoundary (c.position, chain, arc, i, base, pass, verdicts[i] == Verdict::kTooClose) ? 1 : 0;
+    else
+      met[i] = verdicts[i] != Verdict::kKept ? 1 : 0;
   }
-  std::vector<FrontVertex> controls;
+  // A rim that crosses an edge anywhere keeps the paper's cut everywhere.
+  const bool smooth = smoothRim (chain);
+  std::vector<ControlPoint> controls;
+  bool met_since_kept = false;
   for (int i = 0; i < m; ++i)
   {
     count (verdicts[i], stats);
-    if (verdicts[i] == Verdict::kKept)
-      controls.push_back (candidates[i]);
+    met_since_kept = met_since_kept || met[i] || !smooth;
+    if (verdicts[i] != Verdict::kKept)
+      continue;
+    controls.push_back ({candidates[i], met_since_kept});
+    met_since_kept = false;
   }
+  // Across the start of a closed chain: what was discarded after the last kept.
+  if (!controls.empty () && chain.closed)
+    controls.front ().met_before = controls.front ().met_before || met_since_kept;
   return controls;
 }
 
+template <typename PointT> bool
+ElasticSampler<PointT>::smoothRim (const FrontChain &chain)
+{
+  if (chain.sampled)
+    return false;
+  const std::size_t m = chain.vertices.size ();
+  for (std::size_t k = 0; k + 1 < m + (chain.closed ? 1 : 0); ++k)
+    if (chain.vertices[k].normal.dot (chain.vertices[(k + 1) % m].normal) < kSmoothRimCosine)
+      return false;
+  return true;
+}
+
+template <typename PointT> bool
+ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, const FrontChain &chain,
+                                          const std::vector<float> &arc, int i, int base,
+                                          const PassState &pass, bool too_close) const
+{
+  const int m = static_cast<int> (chain.vertices.size ());
+  const float own = kOwnChainArc * equilibrium_distance_;
+  const float loop_length =
+      chain.closed ? arc.back () + (chain.vertices.front ().position - chain.vertices.back ().position).norm () : 0.f;
+  const float reach = (too_close ? kDuplicateReach : kRepulsionReach) * equilibrium_distance_;
+  std::vector<PointGrid::Neighbour> close;
+  pass.former_grid.withinRadius (position, reach, close);
+  if (too_close)
+  {
+    // On top of a point that is not a boundary vertex: the surface beyond
+    // the rim (the other face at an edge), not the rim's own raggedness.
+    PointT query;
+    query.getVector3fMap () = position;
+    pcl::Indices found;
+    std::vector<float> sqr_distances;
+    propagation_.getSearchMethod ()->radiusSearch (query, reach, found, sqr_distances);
+    if (found.size () > close.size ())
+      return true;
+  }
+  return std::any_of (close.begin (), close.end (), [&] (const PointGrid::Neighbour &q) {
+    const int j = q.id - base;
+    if (j < 0 || j >= m)
+      return true;  // a vertex of another chain
+    float along = std::abs (arc[j] - arc[i]);
+    if (chain.closed)
+      along = std::min (along, loop_length - along);
+    return along > own;
+  });
+}
+
 template <typename PointT> std::vector<std::vector<FrontVertex>>
-ElasticSampler<PointT>::controlCurve (const std::vector<FrontVertex> &controls, bool closed_chain, bool &wraps) const
+ElasticSampler<PointT>::controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool sampled_chain,
+                                      bool &wraps) const
 {
   // The kept control points in order, cut where consecutive ones are far
-  // apart (fronts that met: the paper's Fig. 11).
+  // apart and the front met another piece of boundary between them (the
+  // paper's Fig. 11), or are too far apart to bridge.
   const float d_eq = equilibrium_distance_;
+  const auto cut = [&] (const ControlPoint &before, const ControlPoint &after) {
+    const float gap = (after.vertex.position - before.vertex.position).norm ();
+    return gap > kChainBreak * d_eq && (sampled_chain || after.met_before || gap > kMaxBridge * d_eq ||
+                                        after.vertex.normal.dot (before.vertex.normal) < kBridgeCosine);
+  };
   std::vector<std::vector<FrontVertex>> runs (1);
   for (std::size_t k = 0; k < controls.size (); ++k)
   {
-    if (k > 0 && (controls[k].position - controls[k - 1].position).norm () > kChainBreak * d_eq)
+    if (k > 0 && cut (controls[k - 1], controls[k]))
       runs.emplace_back ();
-    runs.back ().push_back (controls[k]);
+    runs.back ().push_back (controls[k].vertex);
   }
-  wraps = closed_chain && controls.size () > 2 &&
-          (controls.front ().position - controls.back ().position).norm () <= kChainBreak * d_eq;
+  wraps = closed_chain && controls.size () > 2 && !cut (controls.back (), controls.front ());
   if (wraps && runs.size () > 1)
   {
     // The last run continues into the first across the loop's start.
@@ -378,6 +467,7 @@ ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, b
   // ... then kept in order along C, never twice on one spot, the new
   // boundary cut where a discarded sample leaves a gap.
   FrontChain out;
+  out.sampled = true;
   bool broken = false;
   std::vector<PointGrid::Neighbour> near;
   for (std::size_t k = 0; k < samples.size (); ++k)
@@ -442,14 +532,14 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       continue;
     }
     // 1-3. Control points along the contracting directions (sec. 4.1).
-    const std::vector<FrontVertex> controls = controlPoints (chain, contractingDirections (chain), base, pass, stats);
+    const std::vector<ControlPoint> controls = controlPoints (chain, contractingDirections (chain), base, pass, stats);
     base += m;
     stats.kept_control_points += controls.size ();
     if (controls.empty ())
       continue;
     // 4. The control curve C; 5. the new boundary B sampled along it (sec. 4.2).
     bool wraps = false;
-    for (const auto &run : controlCurve (controls, chain.closed, wraps))
+    for (const auto &run : controlCurve (controls, chain.closed, chain.sampled, wraps))
       sampleAlongCurve (run, wraps, pass, next);
   }
   stats.samples = frontSize (next);

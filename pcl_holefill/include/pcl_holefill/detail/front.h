@@ -24,6 +24,9 @@ struct FrontChain
 {
   std::vector<FrontVertex> vertices;
   bool closed = false;
+  /** Sampled by a contraction pass, d_eq apart; false for a rim of input
+    * points or the boundary of an opening, whose spacing is the input's. */
+  bool sampled = false;
 };
 
 /** \brief The whole boundary of one hole in one pass (B' or B in the paper). */

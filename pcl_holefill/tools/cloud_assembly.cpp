@@ -57,6 +57,20 @@ realFields (const pcl::PCLPointCloud2 &cloud, const char *const names[3], const 
 const char *const kPositionNames[3] = {"x", "y", "z"};
 const char *const kNormalNames[3] = {"normal_x", "normal_y", "normal_z"};
 
+/** Whether every field of \a cloud is a coordinate of the position or the
+  * normal (or PCD padding, "_"): then a filled point's row owes nothing to
+  * any input point's. */
+bool
+onlyPositionsAndNormals (const pcl::PCLPointCloud2 &cloud)
+{
+  return std::all_of (cloud.fields.begin (), cloud.fields.end (), [] (const pcl::PCLPointField &f) {
+    const auto named = [&f] (const char *const names[3]) {
+      return std::any_of (names, names + 3, [&f] (const char *n) { return f.name == n; });
+    };
+    return f.name == "_" || named (kPositionNames) || named (kNormalNames);
+  });
+}
+
 /** The three \a fields of the point at \a row, as doubles. */
 Eigen::Vector3d
 readVector (const std::uint8_t *row, const pcl::PCLPointField *const fields[3])
@@ -473,7 +487,12 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   const std::size_t step = rows.point_step;
   const std::size_t added = filtered.size () - input_points;
   rows.data.resize ((input_points + added) * step);
-  const std::vector<int> nearest = nearestInputPoints (*prepared.points, filtered, reports, threads);
+  // The other fields (colour, intensity, ...) of a filled point are its
+  // nearest input point's; a cloud without any needs no search (on one
+  // hole of 82,000 points in 910,000, the search was 0.3 of 3.5 s).
+  const bool copy_fields = !onlyPositionsAndNormals (rows);
+  const std::vector<int> nearest =
+      copy_fields ? nearestInputPoints (*prepared.points, filtered, reports, threads) : std::vector<int> ();
   const pcl::PCLPointField *xyz[3], *nxyz[3];
   if (!realFields (rows, kPositionNames, xyz) || !realFields (rows, kNormalNames, nxyz))
   {
@@ -484,7 +503,8 @@ assembleOutput (const PreparedCloud &prepared, const pcl::PointCloud<pcl::PointN
   {
     const pcl::PointNormal &p = filtered[input_points + k];
     std::uint8_t *row = rows.data.data () + (input_points + k) * step;
-    std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[k]) * step, step);
+    if (copy_fields)
+      std::memcpy (row, prepared.fields.data.data () + static_cast<std::size_t> (nearest[k]) * step, step);
     for (int d = 0; d < 3; ++d)
     {
       storeFieldValue (static_cast<double> (p.data[d]) + prepared.origin[d], xyz[d]->datatype, row + xyz[d]->offset);

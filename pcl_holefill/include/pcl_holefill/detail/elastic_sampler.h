@@ -293,21 +293,22 @@ private:
   static bool
   smoothRim (const FrontChain &chain);
 
-  /** Whether the discarded candidate at \a position, from vertex \a i of
-    * \a chain (the former grid's id base + i), met another piece of
-    * boundary: a former point within the repulsion reach (\a too_close: the
-    * duplicate reach) that is not one of the chain's own vertices near i
-    * (\a arc: arc length at each vertex); when \a too_close, also any
+  /** Whether the candidate at \a position from vertex \a i of \a chain (the
+    * former grid's id base + i), given \a verdict, met another piece of
+    * boundary or stopped at the shape. Repelled: one of \a close (the former
+    * points within the repulsion reach, as found) is not among the chain's
+    * own vertices near i (\a arc: arc length at each vertex). Too close: the
+    * same within the duplicate reach (\a close is filled here), or an
     * existing point there that is no former vertex. */
   bool
-  metOtherBoundary (const Eigen::Vector3f &position, const FrontChain &chain, const std::vector<float> &arc, int i,
-                    int base, const PassState &pass, bool too_close) const;
+  metOtherBoundary (const Eigen::Vector3f &position, Verdict verdict, std::vector<PointGrid::Neighbour> &close,
+                    const FrontChain &chain, const std::vector<float> &arc, int i, int base,
+                    const PassState &pass) const;
 
   /** Section 4.1: the control curve C, as runs of control points; \a wraps
-    * tells that the single run is a closed loop. \a sampled_chain: the
-    * former chain's vertices are d_eq apart (FrontChain::sampled). */
+    * tells that the single run is a closed loop. */
   std::vector<std::vector<FrontVertex>>
-  controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool sampled_chain, bool &wraps) const;
+  controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool &wraps) const;
 
   /** Section 4.2: points every d_eq of arc length along a run (unplaced),
     * with the normal of the control point before each. */

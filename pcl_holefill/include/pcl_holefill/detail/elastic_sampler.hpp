@@ -285,42 +285,43 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
   // chain order.
   const float d_eq = equilibrium_distance_;
   const int m = static_cast<int> (chain.vertices.size ());
-  std::vector<float> arc (m, 0.f);
-  for (int i = 1; i < m; ++i)
+  // Only on a smooth rim can a gap be bridged (controlCurve), so only there
+  // is it worth asking what stopped each discarded candidate; elsewhere
+  // every gap counts as a meeting, the paper's rule.
+  const bool smooth = smoothRim (chain);
+  std::vector<float> arc (smooth ? m : 0, 0.f);
+  for (int i = 1; i < static_cast<int> (arc.size ()); ++i)
     arc[i] = arc[i - 1] + (chain.vertices[i].position - chain.vertices[i - 1].position).norm ();
   std::vector<FrontVertex> candidates (m);
   std::vector<Verdict> verdicts (m, Verdict::kUnsupported);
-  std::vector<char> met (m, 0);
+  std::vector<char> met (m, smooth ? 0 : 1);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 8)
   for (int i = 0; i < m; ++i)
   {
     if (directions[i].isZero ())
+    {
+      met[i] = 1;  // unsupported: stopped at the shape
       continue;
+    }
     FrontVertex &c = candidates[i];
     c = {chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
     verdicts[i] = place (c.position, chain.vertices[i].normal, c.normal);
+    std::vector<PointGrid::Neighbour> close;
     if (verdicts[i] == Verdict::kKept)
     {
-      std::vector<PointGrid::Neighbour> close;
       pass.former_grid.withinRadius (c.position, kRepulsionReach * d_eq, close);
       if (std::any_of (close.begin (), close.end (), [&] (const auto &q) { return q.id != base + i; }))
         verdicts[i] = Verdict::kRepelled;
     }
-    // Repelled or too close: by the chain's own neighbours, or by another
-    // piece of boundary. Any other verdict stopped the front at the shape.
-    if (verdicts[i] == Verdict::kRepelled || verdicts[i] == Verdict::kTooClose)
-      met[i] = metOtherBoundary (c.position, chain, arc, i, base, pass, verdicts[i] == Verdict::kTooClose) ? 1 : 0;
-    else
-      met[i] = verdicts[i] != Verdict::kKept ? 1 : 0;
+    if (smooth)
+      met[i] = metOtherBoundary (c.position, verdicts[i], close, chain, arc, i, base, pass) ? 1 : 0;
   }
-  // A rim that crosses an edge anywhere keeps the paper's cut everywhere.
-  const bool smooth = smoothRim (chain);
   std::vector<ControlPoint> controls;
   bool met_since_kept = false;
   for (int i = 0; i < m; ++i)
   {
     count (verdicts[i], stats);
-    met_since_kept = met_since_kept || met[i] || !smooth;
+    met_since_kept = met_since_kept || met[i];
     if (verdicts[i] != Verdict::kKept)
       continue;
     controls.push_back ({candidates[i], met_since_kept});
@@ -345,19 +346,21 @@ ElasticSampler<PointT>::smoothRim (const FrontChain &chain)
 }
 
 template <typename PointT> bool
-ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, const FrontChain &chain,
-                                          const std::vector<float> &arc, int i, int base,
-                                          const PassState &pass, bool too_close) const
+ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, Verdict verdict,
+                                          std::vector<PointGrid::Neighbour> &close, const FrontChain &chain,
+                                          const std::vector<float> &arc, int i, int base, const PassState &pass) const
 {
-  const int m = static_cast<int> (chain.vertices.size ());
-  const float own = kOwnChainArc * equilibrium_distance_;
-  const float loop_length =
-      chain.closed ? arc.back () + (chain.vertices.front ().position - chain.vertices.back ().position).norm () : 0.f;
-  const float reach = (too_close ? kDuplicateReach : kRepulsionReach) * equilibrium_distance_;
-  std::vector<PointGrid::Neighbour> close;
-  pass.former_grid.withinRadius (position, reach, close);
-  if (too_close)
+  // Kept: nothing met; repelled or too close: by the chain's own neighbours,
+  // or by another piece of boundary; any other verdict stopped the front at
+  // the shape.
+  if (verdict == Verdict::kKept)
+    return false;
+  if (verdict != Verdict::kRepelled && verdict != Verdict::kTooClose)
+    return true;
+  if (verdict == Verdict::kTooClose)
   {
+    const float reach = kDuplicateReach * equilibrium_distance_;
+    pass.former_grid.withinRadius (position, reach, close);
     // On top of a point that is not a boundary vertex: the surface beyond
     // the rim (the other face at an edge), not the rim's own raggedness.
     PointT query;
@@ -368,6 +371,10 @@ ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, const
     if (found.size () > close.size ())
       return true;
   }
+  const int m = static_cast<int> (chain.vertices.size ());
+  const float own = kOwnChainArc * equilibrium_distance_;
+  const float loop_length =
+      chain.closed ? arc.back () + (chain.vertices.front ().position - chain.vertices.back ().position).norm () : 0.f;
   return std::any_of (close.begin (), close.end (), [&] (const PointGrid::Neighbour &q) {
     const int j = q.id - base;
     if (j < 0 || j >= m)
@@ -380,8 +387,7 @@ ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, const
 }
 
 template <typename PointT> std::vector<std::vector<FrontVertex>>
-ElasticSampler<PointT>::controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool sampled_chain,
-                                      bool &wraps) const
+ElasticSampler<PointT>::controlCurve (const std::vector<ControlPoint> &controls, bool closed_chain, bool &wraps) const
 {
   // The kept control points in order, cut where consecutive ones are far
   // apart and the front met another piece of boundary between them (the
@@ -389,7 +395,7 @@ ElasticSampler<PointT>::controlCurve (const std::vector<ControlPoint> &controls,
   const float d_eq = equilibrium_distance_;
   const auto cut = [&] (const ControlPoint &before, const ControlPoint &after) {
     const float gap = (after.vertex.position - before.vertex.position).norm ();
-    return gap > kChainBreak * d_eq && (sampled_chain || after.met_before || gap > kMaxBridge * d_eq ||
+    return gap > kChainBreak * d_eq && (after.met_before || gap > kMaxBridge * d_eq ||
                                         after.vertex.normal.dot (before.vertex.normal) < kBridgeCosine);
   };
   std::vector<std::vector<FrontVertex>> runs (1);
@@ -539,7 +545,7 @@ ElasticSampler<PointT>::contract (const Front &former, Front &next, ContractionS
       continue;
     // 4. The control curve C; 5. the new boundary B sampled along it (sec. 4.2).
     bool wraps = false;
-    for (const auto &run : controlCurve (controls, chain.closed, chain.sampled, wraps))
+    for (const auto &run : controlCurve (controls, chain.closed, wraps))
       sampleAlongCurve (run, wraps, pass, next);
   }
   stats.samples = frontSize (next);

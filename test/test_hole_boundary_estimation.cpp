@@ -369,7 +369,7 @@ TEST (MidpointRefinement, FillsTheLoopInOrderAlongTheCloud)
     circle.emplace_back (std::cos (a), std::sin (a), 0.f);
   }
   const auto position_of = [&circle] (int i) { return circle[i]; };
-  const auto nearest_index = [&circle] (const Eigen::Vector3f &p) {
+  const auto nearest_index = [&circle] (const Eigen::Vector3f &p, int, int) {
     int best = -1;
     for (int i = 0; i < kPoints; ++i)
       if (best < 0 || (circle[i] - p).squaredNorm () < (circle[best] - p).squaredNorm ())

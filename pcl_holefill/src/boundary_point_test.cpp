@@ -45,11 +45,12 @@ constexpr float kDiscLeanMargin = 0.17f;
 bool
 emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
-                  float diameter, float test_radius, bool unfold)
+                  float diameter, float test_radius, bool unfold, bool over_other_face)
 {
   const float radius = 0.5f * diameter;
-  thread_local std::vector<Eigen::Vector2f> flat;
+  thread_local std::vector<Eigen::Vector2f> flat, other_face;
   flat.clear ();
+  other_face.clear ();
   // The gap's direction is tangent to the point's own plane; another plane
   // gets its projection.
   const Eigen::Vector3f along_gap =
@@ -61,9 +62,16 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
   for (int k = 0; k < count; ++k)
   {
     const int j = ids[k];
-    if (unit_normals[j].dot (unit_normal) < kOtherSideCosine)
-      continue;
     const Eigen::Vector3f offset = positions[j] - point;
+    if (unit_normals[j].dot (unit_normal) < kOtherSideCosine)
+    {
+      if (over_other_face)
+      {
+        const Eigen::Vector3f below (offset - offset.dot (unit_normal) * unit_normal);
+        other_face.emplace_back (below.dot (e1), below.dot (e2));
+      }
+      continue;
+    }
     const Eigen::Vector3f u = unfold ? unfoldIntoTangentPlane (offset, unit_normal, unit_normals[j])
                                      : Eigen::Vector3f (offset - offset.dot (unit_normal) * unit_normal);
     flat.emplace_back (u.dot (e1), u.dot (e2));
@@ -74,10 +82,9 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
     if (std::abs (lean) > max_lean)
       continue;
     const Eigen::Vector2f centre = radius * Eigen::Vector2f (std::cos (lean), std::sin (lean));
-    const bool empty = std::none_of (flat.begin (), flat.end (), [&] (const Eigen::Vector2f &u) {
-      return (u - centre).squaredNorm () < test_radius * test_radius;
-    });
-    if (empty)
+    const auto inside = [&] (const Eigen::Vector2f &u) { return (u - centre).squaredNorm () < test_radius * test_radius; };
+    if (std::none_of (flat.begin (), flat.end (), inside) &&
+        (!over_other_face || std::any_of (other_face.begin (), other_face.end (), inside)))
       return true;
   }
   return false;

@@ -313,7 +313,7 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
 std::vector<int>
 refineByMidpoints (const std::vector<int> &features, bool closed,
                    const std::function<Eigen::Vector3f (int)> &position_of,
-                   const std::function<int (const Eigen::Vector3f &)> &nearest_index,
+                   const std::function<int (const Eigen::Vector3f &, int, int)> &nearest_index,
                    std::size_t max_points)
 {
   std::vector<int> result;
@@ -338,7 +338,7 @@ refineByMidpoints (const std::vector<int> &features, bool closed,
         piece.push_back (to);
         continue;
       }
-      const int m = nearest_index (0.5f * (position_of (from) + position_of (to)));
+      const int m = nearest_index (0.5f * (position_of (from) + position_of (to)), from, to);
       if (m < 0 || used.count (m))
         continue;
       used.insert (m);

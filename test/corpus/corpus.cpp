@@ -397,6 +397,16 @@ fin ()
 }
 
 Shape
+sheet (double thickness)
+{
+  Shape s;
+  s.name = "sheet";
+  s.closed = true;
+  addBox (s, V (0.05, 0.2, 0.5 - 0.5 * thickness), V (0.95, 0.8, 0.5 + 0.5 * thickness));
+  return s;
+}
+
+Shape
 lBlock ()
 {
   Shape s;

@@ -74,6 +74,7 @@ estimateNormals (Cloud &cloud);
 Shape cylinder ();  //!< closed, axis z, radius 0.3, height 0.8, meshed finely
 Shape torus ();     //!< major radius 0.32, minor 0.14, axis z, meshed finely
 Shape fin ();       //!< a thin plate 0.9 x 0.6 x 0.04: two faces close together
+Shape sheet (double thickness);  //!< 0.9 x 0.6 x thickness, centred at z = 0.5: sheet metal
 Shape lBlock ();    //!< an L-shaped solid: convex and concave edges
 
 /** \brief fandisk from Debian's libcgal-demo (data.tar.gz), scaled into the

@@ -175,7 +175,8 @@ private:
     float second_spacing;  //!< ... and to its second nearest (infinite without one)
     Eigen::Vector3f walk_normal = Eigen::Vector3f::Zero ();  //!< the loop tracing's normal (tracingNormal)
     std::size_t nearest_at = 0;  //!< its k nearest: RimCandidates::nearest from here ...
-    int nearest_count = 0;       //!< ... this many, nearest first
+    int nearest_count = 0;       //!< ... this many, nearest first (on its own side)
+    bool on_thin_part = false;   //!< the other side of a thin part is among its k nearest
   };
 
   /** The rim points of stage 1 and the k nearest of each, one store for
@@ -238,22 +239,31 @@ private:
   void
   nearestUsable (std::size_t local, int k, std::vector<int> &ids, std::vector<float> &sqr_distances) const;
 
-  /** Nearest usable point to a position, as a cloud index (-1 if none). */
+  /** Nearest usable point to a position on the surface of the input points
+    * \a end_a and \a end_b (not across a thin part), as a cloud index (-1 if none). */
   int
-  nearestCloudIndex (const Eigen::Vector3f &position) const;
+  nearestCloudIndex (const Eigen::Vector3f &position, int end_a, int end_b) const;
 
   /** Nearest-neighbour distance of a rim point, the mean spacing for others. */
   float
   spacingOf (int local) const;
 
+  /** True when usable point \a local lies on a thin part: of its \a count
+    * nearest \a ids, enough lie on the other side (\a other_side, set for
+    * each: detail::onOtherSideOfThinPart) and few face the other way
+    * without (noise). */
+  bool
+  onThinPart (std::size_t local, const int *ids, int count, bool *other_side) const;
+
   /** True when a disc of diameter \a diameter, empty of points on this side
     * of the surface, touches usable point \a local from inside its empty
     * sector \a gap (tried at several angles within the sector: the sector's
     * bisector on a ragged rim need not point at the hole's centre). \a nearest
-    * are its k nearest neighbours (local ids). */
+    * are its k nearest neighbours (local ids). On a thin part the disc must
+    * also lie over the other face (see detail::emptyDiscTouches). */
   bool
   emptyDiscTouches (int local, const detail::AngularGap &gap, const std::vector<int> &nearest, float diameter,
-                    float pitch) const;
+                    float pitch, bool on_thin_part) const;
 
   /** True when more than half of \a ids have normals within
     * kMinPlainViewNormalCosine of usable point \a local's: the unfolding

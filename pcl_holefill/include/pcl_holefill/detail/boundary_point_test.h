@@ -39,6 +39,34 @@ unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &un
   return unfolded;
 }
 
+// The two faces of a thin part (a sheet, a wall scanned from both sides)
+// are parallel: normals within 14 degrees of opposite. Not 150 degrees: the
+// noisy PCA normals on both sides of fandisk's acute edge counted as a
+// sheet, and the corner hole there lost rim points (max error 0.015 ->
+// 0.029 at 0.3 % noise).
+constexpr float kOppositeNormalCosine = -0.97f;
+// A neighbour of the other face lies below the tangent plane by at least
+// this share of its distance (a sheet as thick as 0.3 pitch, seen from 2
+// pitches); a normal flipped by a bad orientation lies about in the plane
+// (below it by distance / 2R on a curve of radius R).
+constexpr float kMinDepthSlope = 0.15f;
+
+/** \brief Whether a neighbour at \a offset lies on the other side of a thin
+  * part rather than on the point's own surface: behind the point's tangent
+  * plane (kMinDepthSlope) with a normal facing the other way
+  * (kOppositeNormalCosine). Unfolding cannot lay such a neighbour beside the
+  * point (a parallel face has no edge to unfold across), so its plain
+  * projection would stand in for surface that is missing: on a sheet one
+  * pitch thick a hole in one face was hidden by the face below. A neighbour
+  * across a sharp edge stays. */
+inline bool
+onOtherSideOfThinPart (const Eigen::Vector3f &offset, const Eigen::Vector3f &unit_normal,
+                       const Eigen::Vector3f &neighbour_normal)
+{
+  return neighbour_normal.dot (unit_normal) < kOppositeNormalCosine &&
+         offset.dot (unit_normal) < -kMinDepthSlope * offset.norm ();
+}
+
 /** \brief The sampling pitch at a point, sqrt(surface area per point), from
   * its \a count nearest neighbours, the farthest at squared distance
   * \a farthest_sqr, which cover the disc of that radius less the empty sector
@@ -101,11 +129,27 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   * With \a unfold false the neighbours are projected straight onto the
   * plane normal to \a unit_normal (which then need not be the point's own
   * normal; the gap's direction is projected onto that plane too): the view
-  * that does not trust the neighbours' normals. */
+  * that does not trust the neighbours' normals.
+  *
+  * With \a over_other_face (a point on a thin part: its other side lies
+  * among the point's nearest) the disc must also hold a point of the other
+  * side: one face missing over the other is a hole; where both end together
+  * (a sheet's edge, whose side strip a pitch wide has gaps of random
+  * sampling, or a bore through it) the sheet ends, and nothing is missing
+  * that the points can tell. */
 bool
 emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_normal, const AngularGap &gap,
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
-                  float diameter, float test_radius, bool unfold = true);
+                  float diameter, float test_radius, bool unfold = true, bool over_other_face = false);
+
+/** \brief A point lies on a thin part when at least this many of its k
+  * nearest lie on the other side (onOtherSideOfThinPart; one may be a normal
+  * flipped by noise) ... */
+constexpr int kMinOtherSideNeighbours = 2;
+/** \brief ... and they are at least this share of those facing the other
+  * way: the other face of a sheet lies below the point, all of it; normals
+  * flipped by noise lie above and below alike. */
+constexpr float kMinOtherSideShare = 0.8f;
 
 /** \brief The widest sector, seen from \a position in the plane normal to
   * \a normal, that holds none of the \a rim points (radians, 0..2 pi;

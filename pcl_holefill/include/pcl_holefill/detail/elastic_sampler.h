@@ -293,7 +293,13 @@ private:
   static bool
   smoothRim (const FrontChain &chain);
 
-  /** Whether the candidate at \a position from vertex \a i of \a chain (the
+  /** The existing points (input and filled) within \a reach of \a position
+    * on its own surface: a point across a thin part (detail::onOtherSideOfThinPart,
+    * seen from \a normal) is none. */
+  std::size_t
+  surfacePointsWithin (const Eigen::Vector3f &position, const Eigen::Vector3f &normal, float reach) const;
+
+  /** Whether the \a candidate from vertex \a i of \a chain (the
     * former grid's id base + i), given \a verdict, met another piece of
     * boundary or stopped at the shape. Repelled: one of \a close (the former
     * points within the repulsion reach, as found) is not among the chain's
@@ -301,7 +307,7 @@ private:
     * same within the duplicate reach (\a close is filled here), or an
     * existing point there that is no former vertex. */
   bool
-  metOtherBoundary (const Eigen::Vector3f &position, Verdict verdict, std::vector<PointGrid::Neighbour> &close,
+  metOtherBoundary (const FrontVertex &candidate, Verdict verdict, std::vector<PointGrid::Neighbour> &close,
                     const FrontChain &chain, const std::vector<float> &arc, int i, int base,
                     const PassState &pass) const;
 

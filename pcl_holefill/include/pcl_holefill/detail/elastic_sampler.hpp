@@ -189,6 +189,23 @@ ElasticSampler<PointT>::aboveRimPlanes (const Eigen::Vector3f &position) const
   return false;
 }
 
+template <typename PointT> std::size_t
+ElasticSampler<PointT>::surfacePointsWithin (const Eigen::Vector3f &position, const Eigen::Vector3f &normal,
+                                             float reach) const
+{
+  PointT query;
+  query.getVector3fMap () = position;
+  thread_local pcl::Indices found;
+  thread_local std::vector<float> sqr_distances;
+  propagation_.getSearchMethod ()->radiusSearch (query, reach, found, sqr_distances);
+  const auto &cloud = *propagation_.getInputCloud ();
+  return static_cast<std::size_t> (std::count_if (found.begin (), found.end (), [&] (int j) {
+    return !normal.allFinite () ||
+           !onOtherSideOfThinPart (cloud[j].getVector3fMap () - position, normal,
+                                   cloud[j].getNormalVector3fMap ().normalized ());
+  }));
+}
+
 template <typename PointT> typename ElasticSampler<PointT>::Verdict
 ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
                                Eigen::Vector3f &normal) const
@@ -198,13 +215,7 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
     return Verdict::kUnsupported;
   if (bound_radius_ > 0.f && (position - bound_centre_).norm () > bound_radius_)
     return Verdict::kOutsideBound;
-  PointT query;
-  query.getVector3fMap () = position;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
-  propagation_.getSearchMethod ()->radiusSearch (query, kDuplicateReach * equilibrium_distance_, found,
-                                                  sqr_distances, 1);
-  if (!found.empty ())
+  if (surfacePointsWithin (position, normal, kDuplicateReach * equilibrium_distance_) > 0)
     return Verdict::kTooClose;
   if (aboveRimPlanes (position))
     return Verdict::kBeyondRim;
@@ -314,7 +325,7 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
         verdicts[i] = Verdict::kRepelled;
     }
     if (smooth)
-      met[i] = metOtherBoundary (c.position, verdicts[i], close, chain, arc, i, base, pass) ? 1 : 0;
+      met[i] = metOtherBoundary (c, verdicts[i], close, chain, arc, i, base, pass) ? 1 : 0;
   }
   std::vector<ControlPoint> controls;
   bool met_since_kept = false;
@@ -346,7 +357,7 @@ ElasticSampler<PointT>::smoothRim (const FrontChain &chain)
 }
 
 template <typename PointT> bool
-ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, Verdict verdict,
+ElasticSampler<PointT>::metOtherBoundary (const FrontVertex &candidate, Verdict verdict,
                                           std::vector<PointGrid::Neighbour> &close, const FrontChain &chain,
                                           const std::vector<float> &arc, int i, int base, const PassState &pass) const
 {
@@ -360,15 +371,10 @@ ElasticSampler<PointT>::metOtherBoundary (const Eigen::Vector3f &position, Verdi
   if (verdict == Verdict::kTooClose)
   {
     const float reach = kDuplicateReach * equilibrium_distance_;
-    pass.former_grid.withinRadius (position, reach, close);
+    pass.former_grid.withinRadius (candidate.position, reach, close);
     // On top of a point that is not a boundary vertex: the surface beyond
     // the rim (the other face at an edge), not the rim's own raggedness.
-    PointT query;
-    query.getVector3fMap () = position;
-    pcl::Indices found;
-    std::vector<float> sqr_distances;
-    propagation_.getSearchMethod ()->radiusSearch (query, reach, found, sqr_distances);
-    if (found.size () > close.size ())
+    if (surfacePointsWithin (candidate.position, candidate.normal, reach) > close.size ())
       return true;
   }
   const int m = static_cast<int> (chain.vertices.size ());

@@ -37,11 +37,12 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
   * (indices of a cloud), recursively insert the cloud point nearest to each
   * segment's midpoint until no new point appears. At most \a max_points in
   * the result. \a position_of maps an index to its position and
-  * \a nearest_index a position to the nearest cloud index (or -1). */
+  * \a nearest_index a midpoint and the segment's two ends to the nearest
+  * cloud index on the ends' surface (or -1). */
 std::vector<int>
 refineByMidpoints (const std::vector<int> &features, bool closed,
                    const std::function<Eigen::Vector3f (int)> &position_of,
-                   const std::function<int (const Eigen::Vector3f &)> &nearest_index,
+                   const std::function<int (const Eigen::Vector3f &, int, int)> &nearest_index,
                    std::size_t max_points);
 
 /** \brief True when the missing surface lies inside the loop (a hole), false

@@ -208,19 +208,36 @@ HoleBoundaryEstimation<PointT>::nearestUsable (std::size_t local, int k, std::ve
 }
 
 template <typename PointT> int
-HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &position) const
+HoleBoundaryEstimation<PointT>::nearestCloudIndex (const Eigen::Vector3f &position, int end_a, int end_b) const
 {
+  // The nearest of a few, on the ends' side: across a sheet a pitch thick
+  // the nearest point to a midpoint can be on the other face, and a rim
+  // through it grew filled points there.
+  constexpr int kCandidates = 4;
+  const Eigen::Vector3f side =
+      ((*input_)[end_a].getNormalVector3fMap ().normalized () + (*input_)[end_b].getNormalVector3fMap ().normalized ())
+          .normalized ();
+  const auto on_side = [&] (const Eigen::Vector3f &p, const Eigen::Vector3f &n) {
+    return !side.allFinite () || !detail::onOtherSideOfThinPart (p - position, side, n);
+  };
   if (search_)
   {
     PointT query;
     query.getVector3fMap () = position;
     pcl::Indices found;
     std::vector<float> d2;
-    return search_->nearestKSearch (query, 1, found, d2) > 0 ? found[0] : -1;
+    search_->nearestKSearch (query, kCandidates, found, d2);
+    for (const auto i : found)
+      if (on_side ((*input_)[i].getVector3fMap (), (*input_)[i].getNormalVector3fMap ().normalized ()))
+        return i;
+    return -1;
   }
   std::vector<detail::PointGrid::Neighbour> found;
-  grid_.nearestK (position, 1, found);
-  return found.empty () ? -1 : (*usable_)[found[0].id];
+  grid_.nearestK (position, kCandidates, found);
+  for (const auto &f : found)
+    if (on_side (positions_[f.id], normals_[f.id]))
+      return (*usable_)[f.id];
+  return -1;
 }
 
 template <typename PointT> void
@@ -260,7 +277,7 @@ HoleBoundaryEstimation<PointT>::normalsAgree (int local, const std::vector<int> 
 template <typename PointT> bool
 HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::AngularGap &gap,
                                                   const std::vector<int> &nearest, float diameter,
-                                                  float pitch) const
+                                                  float pitch, bool on_thin_part) const
 {
   // A rim is ragged by about a pitch: the disc tested is that much smaller
   // than the hole it stands for.
@@ -268,20 +285,24 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   const bool unfolding_trusted = normalsAgree (local, nearest);
   const auto touches = [&] (const std::vector<int> &ids) {
     return detail::emptyDiscTouches (positions_[local], normals_[local], gap, positions_.data (), normals_.data (),
-                                     ids.data (), static_cast<int> (ids.size ()), diameter, test_radius);
+                                     ids.data (), static_cast<int> (ids.size ()), diameter, test_radius, true,
+                                     on_thin_part);
   };
   // A point of the k nearest inside every disc is inside it among all
   // neighbours too (more points only fill discs), so the wide search below
   // is skipped. On uniformly random samples a fifth of all points pass the
   // angular-gap test and two thirds of those fail here: the search of a
   // disc-sized ball for each (a 7x7x7 block of cells) was half the detection.
-  if (unfolding_trusted && !touches (nearest))
+  // Not on a thin part, where the disc must also lie over the other face,
+  // which the k nearest kept do not hold: more points can fill that need.
+  const bool shortcuts = unfolding_trusted && !on_thin_part;
+  if (shortcuts && !touches (nearest))
     return false;
   thread_local std::vector<int> ids;
   // The same again within a ball reaching just past the discs' centres
   // before the ball of the whole disc: a third as many cells, and it settles
   // most of the rest.
-  if (unfolding_trusted)
+  if (shortcuts)
   {
     usableWithin (local, detail::kMiddleReach * diameter, ids);
     if (!touches (ids))
@@ -309,7 +330,7 @@ HoleBoundaryEstimation<PointT>::emptyDiscTouches (int local, const detail::Angul
   if (plane.dot (normals_[local]) < 0.f)
     plane = -plane;
   return detail::emptyDiscTouches (positions_[local], plane, gap, positions_.data (), normals_.data (), ids.data (),
-                                   count, diameter, test_radius, false);
+                                   count, diameter, test_radius, false, on_thin_part);
 }
 
 template <typename PointT> Eigen::Vector3f
@@ -353,6 +374,28 @@ HoleBoundaryEstimation<PointT>::measure (BoundaryLoop &loop) const
   loop.mean_spacing = loop.indices.empty () ? 0.f : spacing / static_cast<float> (loop.indices.size ());
 }
 
+template <typename PointT> bool
+HoleBoundaryEstimation<PointT>::onThinPart (std::size_t local, const int *ids, int count, bool *other_side) const
+{
+  // A flipped normal (PCA normals of noisy points) faces the other way too,
+  // but lies above or below the tangent plane as the noise puts it; the
+  // other face of a sheet lies below, all of it.
+  int opposed = 0, behind = 0;
+  for (int j = 0; j < count; ++j)
+  {
+    // The dot product first: most points face their neighbours' way, and
+    // this runs for every point of the cloud.
+    other_side[j] = false;
+    if (!(normals_[ids[j]].dot (normals_[local]) < detail::kOppositeNormalCosine))
+      continue;
+    ++opposed;
+    other_side[j] = detail::onOtherSideOfThinPart (positions_[ids[j]] - positions_[local], normals_[local],
+                                                   normals_[ids[j]]);
+    behind += other_side[j] ? 1 : 0;
+  }
+  return behind >= detail::kMinOtherSideNeighbours && behind >= detail::kMinOtherSideShare * opposed;
+}
+
 template <typename PointT> typename HoleBoundaryEstimation<PointT>::RimCandidates
 HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
 {
@@ -362,7 +405,20 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   std::mutex rim_mutex;  // rim points are a fraction of all: a lock each is cheap
   std::vector<float> spacing_of (n, 0.f);
   pitch_of.assign (n, 0.f);
-  auto test_point = [&] (std::size_t i, const int *ids, const float *d2, int count) {
+  auto test_point = [&] (std::size_t i, const int *all_ids, const float *all_d2, int all_count) {
+    // The point's own surface only, on a thin part: the face across it
+    // would fill the gap of a hole in this one (and halve the pitch).
+    int ids[64];
+    float d2[64];
+    bool other_side[64];
+    int count = 0;
+    const bool on_thin_part = onThinPart (i, all_ids, std::min (all_count, 64), other_side);
+    for (int j = 0; j < all_count && j < 64; ++j)
+      if (!(on_thin_part && other_side[j]))
+      {
+        ids[count] = all_ids[j];
+        d2[count++] = all_d2[j];
+      }
     if (count == 0)
       return;
     detail::NearestTwo nearest;
@@ -389,6 +445,7 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     std::sort (nearest_first, nearest_first + count);
     std::lock_guard<std::mutex> lock (rim_mutex);
     RimPoint point{static_cast<int> (i), gap, spacing, std::sqrt (nearest.second)};
+    point.on_thin_part = on_thin_part;
     point.nearest_at = rim.nearest.size ();
     point.nearest_count = count;
     for (int j = 0; j < count; ++j)
@@ -467,7 +524,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
       pitch += pitch_of[j];
     pitch /= static_cast<float> (ids.size () + 1);
     const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
-    keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch) ? 1 : 0;
+    keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch, rim_points[r].on_thin_part) ? 1 : 0;
     if (keep[r])
       rim_points[r].walk_normal = tracingNormal (local, ids);
   }
@@ -497,7 +554,8 @@ HoleBoundaryEstimation<PointT>::finishLoop (const detail::TracedLoop &traced, co
   }
   loop.indices = detail::refineByMidpoints (
       coarse, traced.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
-      [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, 4 * coarse.size () + 64);
+      [this] (const Eigen::Vector3f &p, int a, int b) { return nearestCloudIndex (p, a, b); },
+      4 * coarse.size () + 64);
   measure (loop);
   loop.pitch = pitch / static_cast<float> (traced.members.size ());
   const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
@@ -569,7 +627,7 @@ HoleBoundaryEstimation<PointT>::refineFeaturePoints (const pcl::Indices &feature
   loop.is_hole = true;
   loop.indices = detail::refineByMidpoints (
       feature_indices, closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
-      [this] (const Eigen::Vector3f &p) { return nearestCloudIndex (p); }, input_->size ());
+      [this] (const Eigen::Vector3f &p, int a, int b) { return nearestCloudIndex (p, a, b); }, input_->size ());
   measure (loop);
   return true;
 }

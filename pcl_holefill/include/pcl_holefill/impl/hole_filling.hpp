@@ -989,10 +989,14 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
     positions.clear ();
     normals.clear ();
     float nearest = 0.f, farthest = 0.f;
+    const Eigen::Vector3f normal = working[i].getNormalVector3fMap ().normalized ();
     for (std::size_t k = 0; k < found.size (); ++k)
     {
       if (!(sqr_distances[k] > 0.f) || !detail::isOrientedPoint (working[found[k]]))
         continue;  // the point itself, duplicates and unusable points say nothing about spacing
+      if (detail::onOtherSideOfThinPart (working[found[k]].getVector3fMap () - working[i].getVector3fMap (), normal,
+                                         working[found[k]].getNormalVector3fMap ().normalized ()))
+        continue;  // the other face of a sheet: not this surface's density
       nearest = positions.empty () ? sqr_distances[k] : std::min (nearest, sqr_distances[k]);
       farthest = std::max (farthest, sqr_distances[k]);
       positions.push_back (working[found[k]].getVector3fMap ());
@@ -1003,8 +1007,7 @@ HoleFilling<PointT>::measureRim (const PointCloud &working, pcl::search::Search<
     spacing_sum += std::sqrt (nearest);
     ids.resize (positions.size ());
     std::iota (ids.begin (), ids.end (), 0);
-    const detail::AngularGap gap = detail::largestAngularGap (working[i].getVector3fMap (),
-                                              working[i].getNormalVector3fMap ().normalized (), positions.data (),
+    const detail::AngularGap gap = detail::largestAngularGap (working[i].getVector3fMap (), normal, positions.data (),
                                               normals.data (), ids.data (), static_cast<int> (ids.size ()));
     pitches.push_back (detail::samplingPitch (farthest, static_cast<int> (positions.size ()), gap.angle));
   }

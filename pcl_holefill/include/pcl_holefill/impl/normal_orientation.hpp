@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/normal_orientation.h>
+#include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/detail/point_grid.h>
 #include <pcl_holefill/detail/point_validity.h>
 
@@ -206,7 +207,8 @@ flippedNeighbourShare (const pcl::PointCloud<PointT> &cloud, int k, std::size_t 
   {
     grid.nearestK (positions[i], k + 1, near);
     for (const auto &n : near)
-      if (n.id != static_cast<int> (i))
+      if (n.id != static_cast<int> (i) &&
+          !detail::onOtherSideOfThinPart (positions[n.id] - positions[i], normals[i], normals[n.id]))
       {
         ++pairs;
         flipped += normals[i].dot (normals[n.id]) < -0.5f;

@@ -19,7 +19,10 @@
  * and the ratio of the two, the peak memory of the 2-thread fill above the
  * cloud itself (also in units of the cloud's size), and points added per
  * second. Every operation runs in a process of its own (bench::inChildProcess)
- * so that its peak memory is its own (and the parent never runs OpenMP).
+ * so that its peak memory is its own (and the parent never runs OpenMP),
+ * kRepeats times, the thread counts alternating, and its least time counts:
+ * on a shared 2-core machine one run of the same fill took from 3.6 to 4.4 s,
+ * and the least time is the one other work disturbed least.
  * Last, the whole command on a 250,000-point file with 25,000 samples cut,
  * as a process, against a process that reads the file and runs
  * NormalEstimationOMP (this program, started with --normals FILE).
@@ -47,6 +50,7 @@ using Cloud = pcl_holefill::shapes::Cloud;
 namespace
 {
 constexpr unsigned kTimeLimit = 600;  // seconds per operation
+constexpr int kRepeats = 3;            // runs of each operation; the least time counts
 const Eigen::Vector3d kPole (0.5, 0.5, 1.0);
 
 /** What one fill of the hole gave, beside its cost. */
@@ -99,6 +103,16 @@ fillInChild (const Cloud::Ptr &cloud, unsigned threads)
   return outcome;
 }
 
+/** The run of the two that took less time (both gave the same output when
+  * the fill is deterministic; the caller checks). */
+FillOutcome
+leastTime (const FillOutcome &a, const FillOutcome &b)
+{
+  if (!a.cost.finished)
+    return a;
+  return b.cost.finished && b.cost.seconds < a.cost.seconds ? b : a;
+}
+
 Cloud
 sample (const std::string &sampling, std::size_t points)
 {
@@ -111,7 +125,7 @@ sample (const std::string &sampling, std::size_t points)
 
 void
 printRow (const Cloud &kept, std::size_t cut, const FillOutcome &one, const FillOutcome &two,
-          const bench::Measured &normals)
+          const bench::Measured &normals, bool repeats_identical)
 {
   const double cloud_mb = kept.size () * sizeof (pcl::PointNormal) / (1024.0 * 1024.0);
   if (!one.cost.finished || !two.cost.finished)
@@ -122,7 +136,7 @@ printRow (const Cloud &kept, std::size_t cut, const FillOutcome &one, const Fill
   const double t1 = one.cost.seconds, t2 = two.cost.seconds;
   std::printf ("| %zu | %zu | %zu | %s | %.5f | %.2f | %.2f | %.2f | %s | %.2f | %.2f | %.0f | %.2f | %.0f |\n",
                kept.size (), cut, two.added, two.closed ? "yes" : "no", two.max_error, t1, t2, t1 / t2,
-               one.digest == two.digest ? "yes" : "NO", normals.seconds, t2 / normals.seconds, two.cost.extra_mb,
+               one.digest == two.digest && repeats_identical ? "yes" : "NO", normals.seconds, t2 / normals.seconds, two.cost.extra_mb,
                two.cost.extra_mb / cloud_mb, two.added / t2);
   std::fflush (stdout);
 }
@@ -195,13 +209,23 @@ main (int argc, char **argv)
       const double rho = std::sqrt (static_cast<double> (wanted) / n);
       const auto cut = pcl_holefill::shapes::cutHoles (full, {{kPole, rho}});
       const Cloud::Ptr kept (new Cloud (cut.kept));
-      const FillOutcome one = fillInChild (kept, 1);
-      const FillOutcome two = fillInChild (kept, 2);
-      const bench::Measured normals = bench::inChildProcess ([&] {
-        bench::pclNormals (kept, 2);
-        return std::string ();
-      }, kTimeLimit);
-      printRow (*kept, cut.removed.size (), one, two, normals);
+      FillOutcome one, two;
+      bench::Measured normals;
+      bool identical = true;
+      for (int run = 0; run < kRepeats; ++run)
+      {
+        const FillOutcome one_now = fillInChild (kept, 1), two_now = fillInChild (kept, 2);
+        const bench::Measured normals_now = bench::inChildProcess ([&] {
+          bench::pclNormals (kept, 2);
+          return std::string ();
+        }, kTimeLimit);
+        if (run > 0)
+          identical = identical && one_now.digest == one.digest && two_now.digest == two.digest;
+        one = run == 0 ? one_now : leastTime (one, one_now);
+        two = run == 0 ? two_now : leastTime (two, two_now);
+        normals = run == 0 || normals_now.seconds < normals.seconds ? normals_now : normals;
+      }
+      printRow (*kept, cut.removed.size (), one, two, normals, identical);
     }
   }
 #ifdef PCL_HOLEFILL_TOOL

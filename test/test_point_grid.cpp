@@ -2,6 +2,7 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
+#include <pcl_holefill/detail/ordered_selection.h>
 #include <pcl_holefill/detail/point_grid.h>
 #include <pcl_holefill/voxel_hash_search.h>
 
@@ -160,6 +161,7 @@ TEST (PointGrid, SpatialOrderGoesCellByCellAlongTheZCurveThenByPosition)
   const float cell = 0.01f;
   const std::vector<int> order = PointGrid::spatialOrder (points, cell, 1);
   EXPECT_EQ (PointGrid::spatialOrder (points, cell, 2), order);
+  EXPECT_EQ (PointGrid::spatialOrder (points, cell, 3), order);
   ASSERT_EQ (order.size (), points.size ());
   std::vector<int> sorted = order;
   std::sort (sorted.begin (), sorted.end ());
@@ -226,4 +228,25 @@ TEST (VoxelHashSearch, IsAPclSearch)
   ASSERT_EQ (search->nearestKSearch ((*cloud)[7], 1, idx, d2), 1);
   EXPECT_EQ (idx[0], 7);
   EXPECT_EQ (d2[0], 0.f);
+}
+
+TEST (SelectInOrder, KeepsWhatTheSerialFilterKeepsForAnyNumberOfThreads)
+{
+  // Runs kept and dropped of every length, an odd count that the blocks do
+  // not divide, and none at all.
+  for (const std::ptrdiff_t n : {std::ptrdiff_t (0), std::ptrdiff_t (1), std::ptrdiff_t (100003)})
+  {
+    const auto keep = [] (std::ptrdiff_t i) { return (i / 7) % 3 != 1 && i % 11 != 4; };
+    const auto value = [] (std::ptrdiff_t i) { return static_cast<int> (3 * i + 1); };
+    std::vector<int> expected;
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+      if (keep (i))
+        expected.push_back (value (i));
+    for (const int threads : {1, 2, 3, 5})
+    {
+      std::vector<int> out = {42};  // replaced, not appended to
+      pcl_holefill::detail::selectInOrder (n, threads, keep, value, out);
+      EXPECT_EQ (out, expected) << n << " points, " << threads << " threads";
+    }
+  }
 }

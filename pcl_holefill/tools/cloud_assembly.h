@@ -32,9 +32,11 @@ struct PreparedCloud
 
 /** \brief Checks the file's fields, takes its normals or estimates them
   * (estimateOrientedNormals: PCL NormalEstimationOMP, k = 16 or more on
-  * noisy clouds, then consistently oriented). */
+  * noisy clouds, then consistently oriented). The file's rows become
+  * prepared.fields: pass the cloud with std::move where it is not needed
+  * after (a copy of a large cloud's rows costs a serial pass). */
 bool
-prepareCloud (const pcl::PCLPointCloud2 &file_cloud, unsigned int threads, PreparedCloud &prepared,
+prepareCloud (pcl::PCLPointCloud2 file_cloud, unsigned int threads, PreparedCloud &prepared,
               std::string &error);
 
 /** \brief The output file: the input rows unchanged, then one row per filled

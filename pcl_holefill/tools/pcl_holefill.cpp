@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 #include <unistd.h>
 
@@ -104,7 +105,7 @@ run (const Options &options)
   if (!loadCloud (options.input, file_cloud, error))
     return fail (error);
   PreparedCloud prepared;
-  if (!prepareCloud (file_cloud, static_cast<unsigned int> (options.threads), prepared, error))
+  if (!prepareCloud (std::move (file_cloud), static_cast<unsigned int> (options.threads), prepared, error))
     return fail (options.input + ": " + error);
   if (!options.quiet)
   {

@@ -117,8 +117,14 @@ private:
   int
   findOrAddCell (CellKey key);
 
+  /** Grows the table to hold \a cells cells without a rehash. */
   void
-  rehash (std::size_t capacity);
+  reserveCells (std::size_t cells, int threads);
+
+  /** A table of \a capacity slots (a power of 2), its pages first touched
+    * by \a threads threads. */
+  void
+  rehash (std::size_t capacity, int threads = 1);
 
   /** The points of one cell: those of the last build(), then those inserted since. */
   struct CellSpan

@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <pcl_holefill/detail/ordered_selection.h>
+
 #include <pcl/point_cloud.h>
 #include <pcl/types.h>
 
@@ -22,16 +24,16 @@ isOrientedPoint (const PointT &p)
   return std::isfinite (n2) && n2 > 1e-12f;
 }
 
-/** \brief The entries of \a indices that are oriented points; returns how
-  * many were skipped. */
+/** \brief The entries of \a indices that are oriented points, in their
+  * order (tested by \a threads threads); returns how many were skipped. */
 template <typename PointT> inline std::size_t
-keepOrientedPoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices, pcl::Indices &kept)
+keepOrientedPoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices, pcl::Indices &kept,
+                    int threads = 1)
 {
-  kept.clear ();
-  kept.reserve (indices.size ());
-  for (const auto i : indices)
-    if (isOrientedPoint (cloud[i]))
-      kept.push_back (i);
+  selectInOrder (
+      static_cast<std::ptrdiff_t> (indices.size ()), threads,
+      [&] (std::ptrdiff_t i) { return isOrientedPoint (cloud[indices[i]]); }, [&] (std::ptrdiff_t i) { return indices[i]; },
+      kept);
   return indices.size () - kept.size ();
 }
 

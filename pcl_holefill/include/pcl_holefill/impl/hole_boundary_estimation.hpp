@@ -113,7 +113,8 @@ HoleBoundaryEstimation<PointT>::selectUsablePoints (const char *caller)
     return false;
   }
   usable_.reset (new pcl::Indices);
-  const std::size_t skipped = detail::keepOrientedPoints (*input_, *indices_, *usable_);
+  const std::size_t skipped =
+      detail::keepOrientedPoints (*input_, *indices_, *usable_, detail::resolveThreadCount (threads_));
   deinitCompute ();
   if (skipped > 0)
     PCL_WARN ("[pcl_holefill::%s::%s] Skipped %zu of %zu points with non-finite "
@@ -140,17 +141,11 @@ HoleBoundaryEstimation<PointT>::orderSpatially (const char *caller)
   // Repeated positions would fill the k nearest with copies of one
   // neighbour: only the first of each is used (spatialOrder puts them together).
   pcl::IndicesPtr ordered (new pcl::Indices);
-  detail::reserveTouched (*ordered, usable_->size (), threads);
-  std::size_t duplicates = 0;
-  for (std::size_t i = 0; i < order.size (); ++i)
-  {
-    if (i > 0 && unordered[order[i]] == unordered[order[i - 1]])
-    {
-      ++duplicates;
-      continue;
-    }
-    ordered->push_back ((*usable_)[order[i]]);
-  }
+  detail::selectInOrder (
+      static_cast<std::ptrdiff_t> (order.size ()), threads,
+      [&] (std::ptrdiff_t i) { return i == 0 || unordered[order[i]] != unordered[order[i - 1]]; },
+      [&] (std::ptrdiff_t i) { return (*usable_)[order[i]]; }, *ordered);
+  const std::size_t duplicates = order.size () - ordered->size ();
   if (duplicates > 0)
     PCL_WARN ("[pcl_holefill::%s::%s] Ignored %zu points that repeat the position of "
               "another.\n", getClassName ().c_str (), caller, duplicates);

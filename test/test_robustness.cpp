@@ -270,7 +270,10 @@ class NoisyThinEnd : public testing::TestWithParam<std::tuple<int, double>>
 // across the plate. Each half was filled as a hole of its own (3 reports
 // for 2 holes), and fronts ran off the end of the plate (max errors 0.052 to
 // 0.071). The walk no longer steps or closes between opposite normals, and
-// new points must lie within the rim.
+// new points must lie within the rim. On jittered samples at 0.5 % the top
+// and bottom faces still grew past the end as flat flaps (max error 0.073,
+// 9 pitches): every rim point of the end face is next to a crease, so none
+// gave a rim plane to hold them; now the end face's own are kept.
 TEST_P (NoisyThinEnd, IsOneLoopAndItsFillStaysOnThePart)
 {
   const auto c = makeCase (corpus::fin (), kSamplings[std::get<0> (GetParam ())], std::get<1> (GetParam ()), false, true);
@@ -279,14 +282,15 @@ TEST_P (NoisyThinEnd, IsOneLoopAndItsFillStaysOnThePart)
   EXPECT_EQ (o.detection.false_holes, 0u);
   EXPECT_EQ (o.reported, c.holes.size ());  // was one more: the end hole in two halves
   EXPECT_TRUE (o.fill.kept_unchanged);
-  // reached: 0.0055 (voxel) to 0.0176 (scan lines); was 0.052 to 0.071
+  // reached: 0.0055 (voxel) to 0.0176 (scan lines), jittered 0.5 %: 0.019;
+  // was 0.052 to 0.071, jittered 0.5 %: 0.073
   EXPECT_LE (o.fill.max_error, 0.025);
 }
 
 INSTANTIATE_TEST_SUITE_P (
     Samplings, NoisyThinEnd,
-    testing::Values (std::make_tuple (1, 0.005), std::make_tuple (2, 0.003), std::make_tuple (3, 0.003),
-                     std::make_tuple (4, 0.003)),
+    testing::Values (std::make_tuple (1, 0.005), std::make_tuple (2, 0.003), std::make_tuple (2, 0.005),
+                     std::make_tuple (3, 0.003), std::make_tuple (4, 0.003)),
     [] (const testing::TestParamInfo<std::tuple<int, double>> &info) {
       return corpus::toString (kSamplings[std::get<0> (info.param)]) + std::string ("_noise") +
              std::to_string (static_cast<int> (std::get<1> (info.param) * 1000 + 0.5));

@@ -254,9 +254,13 @@ walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
     // (two holes 12 pitches across, random samples, bridges of 1-3 pitches:
     // one of the two found).
     const Eigen::Vector3f step_dir = (positions[next] - positions[current]).normalized ();
+    const auto second_row = [&] (const PointGrid::Neighbour &q) {
+      const bool beside_or_behind = (positions[q.id] - positions[current]).dot (step_dir) <= 0.5f * std::sqrt (q.sqr_distance);
+      const bool same_side = gap_directions[q.id].dot (gap_directions[current]) > kMaxAbsorbedGapOpposition;
+      return beside_or_behind && q.sqr_distance <= 0.25f * link * link && same_side;
+    };
     for (const auto &q : near)
-      if (!visited[q.id] && (positions[q.id] - positions[current]).dot (step_dir) <= 0.5f * std::sqrt (q.sqr_distance) &&
-          q.sqr_distance <= 0.25f * link * link && gap_directions[q.id].dot (gap_directions[current]) > kMaxAbsorbedGapOpposition)
+      if (!visited[q.id] && second_row (q))
         visited[q.id] = 1;
     visited[next] = 1;
     travelled += (positions[next] - positions[current]).norm ();

@@ -30,10 +30,9 @@ template <typename PointT> inline std::size_t
 keepOrientedPoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices, pcl::Indices &kept,
                     int threads = 1)
 {
-  selectInOrder (
-      static_cast<std::ptrdiff_t> (indices.size ()), threads,
-      [&] (std::ptrdiff_t i) { return isOrientedPoint (cloud[indices[i]]); }, [&] (std::ptrdiff_t i) { return indices[i]; },
-      kept);
+  const auto oriented = [&] (std::ptrdiff_t i) { return isOrientedPoint (cloud[indices[i]]); };
+  const auto index = [&] (std::ptrdiff_t i) { return indices[i]; };
+  selectInOrder (static_cast<std::ptrdiff_t> (indices.size ()), threads, oriented, index, kept);
   return indices.size () - kept.size ();
 }
 

@@ -343,15 +343,20 @@ normalSpread (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &f
   return differences.empty () ? kNaN : median (differences);
 }
 
+/** Is point \a q's normal more than kCreaseNormalDifference from the unit normal \a n? */
+template <typename PointT> bool
+acrossACrease (const pcl::PointCloud<PointT> &cloud, int q, const Eigen::Vector3f &n)
+{
+  return detail::isOrientedPoint (cloud[q]) &&
+         (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > kCreaseNormalDifference;
+}
+
 /** Does a neighbour's normal differ from point \a i's by more than kCreaseNormalDifference? */
 template <typename PointT> bool
 seesCrease (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indices &found)
 {
   const Eigen::Vector3f n = cloud[i].getNormalVector3fMap ().normalized ();
-  return std::any_of (found.begin (), found.end (), [&] (int q) {
-    return detail::isOrientedPoint (cloud[q]) &&
-           (cloud[q].getNormalVector3fMap ().normalized () - n).norm () > kCreaseNormalDifference;
-  });
+  return std::any_of (found.begin (), found.end (), [&] (int q) { return acrossACrease (cloud, q, n); });
 }
 
 /** Is point \a i on a strip between two creases: neighbours whose normals
@@ -367,8 +372,7 @@ betweenTwoCreases (const pcl::PointCloud<PointT> &cloud, int i, const pcl::Indic
   std::vector<Eigen::Vector3f> sides;
   for (const auto q : found)
   {
-    if (!detail::isOrientedPoint (cloud[q]) ||
-        !((cloud[q].getNormalVector3fMap ().normalized () - n).norm () > kCreaseNormalDifference))
+    if (!acrossACrease (cloud, q, n))
       continue;
     Eigen::Vector3f d = cloud[q].getVector3fMap () - x;
     d -= d.dot (n) * n;
@@ -1180,27 +1184,33 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
   // estimated ones are tilted next to a crease, and their planes cut valid
   // fill (a hole across a bore's edge from PCA normals: 0.013 -> 0.024).
   const bool smooth_normals = report.normal_spread <= detail::kMaxStripNormalSpread;
-  std::vector<Eigen::Vector3f> points, normals, strip_points, strip_normals;
+  std::vector<Eigen::Vector3f> points, normals;
+  std::vector<int> strip;  // rim points between two creases
   pcl::Indices found;
   std::vector<float> sqr_distances;
   for (std::size_t k = 0; k < n; k += step)
   {
     const int i = surroundings.rim[k];
     surroundings.search->radiusSearch (cloud[i], detail::kNoiseReachInSpacings * scale.spacing, found, sqr_distances);
-    const bool creased = detail::seesCrease (cloud, i, found);
-    if (creased && !(smooth_normals && detail::betweenTwoCreases (cloud, i, found)))
-      continue;
-    (creased ? strip_points : points).push_back (cloud[i].getVector3fMap ());
-    (creased ? strip_normals : normals).push_back (cloud[i].getNormalVector3fMap ().normalized ());
+    if (!detail::seesCrease (cloud, i, found))
+    {
+      points.push_back (cloud[i].getVector3fMap ());
+      normals.push_back (cloud[i].getNormalVector3fMap ().normalized ());
+    }
+    else if (smooth_normals && detail::betweenTwoCreases (cloud, i, found))
+      strip.push_back (i);
   }
   const std::size_t away_from_creases = normals.size ();
-  for (std::size_t k = 0; k < strip_points.size (); ++k)
+  for (const int i : strip)
+  {
+    const Eigen::Vector3f normal = cloud[i].getNormalVector3fMap ().normalized ();
     if (std::none_of (normals.begin (), normals.begin () + away_from_creases,
-                      [&] (const Eigen::Vector3f &m) { return m.dot (strip_normals[k]) > detail::kSameFaceCosine; }))
+                      [&] (const Eigen::Vector3f &m) { return m.dot (normal) > detail::kSameFaceCosine; }))
     {
-      points.push_back (strip_points[k]);
-      normals.push_back (strip_normals[k]);
+      points.push_back (cloud[i].getVector3fMap ());
+      normals.push_back (normal);
     }
+  }
   // Noise moves each rim point, and its plane, off the surface: with 96
   // of them, one lies past 2.5 sigma (the constraint's allowance) on most
   // noisy rims and cut the whole face's fill off (noisy cubes: 100 -> 89 %

@@ -29,8 +29,6 @@ constexpr float kTurnDegrees = 40.f;
 // turns steadily, about four times as much between the windows as within
 // one: a rim across a bore turned by 43 degrees there, no crease.
 constexpr float kSharpness = 6.f;
-// Arcs whose mean normals are within this angle are one face.
-constexpr float kSameFaceDegrees = 25.f;
 // More crossings than this: a ragged rim, not a few faces.
 constexpr std::size_t kMaxCrossings = 8;
 // A chord shorter than this (in spacings) is a corner's, not a crease across the hole.

@@ -10,6 +10,10 @@
 
 namespace pcl_holefill::detail
 {
+/** Rim arcs (or rim points' planes) whose mean normals lie within this
+  * angle of each other (degrees) are one face's. */
+constexpr float kSameFaceDegrees = 25.f;
+
 /** \brief A crease that crosses a hole, as the rim shows it: the rim turns
   * from face A to face B at \a from and back at \a to, and the crease
   * inside the hole is taken as the chord between them.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_holefill/bilateral_preprocessor.h>
+#include <pcl_holefill/detail/crease_chords.h>
 #include <pcl_holefill/detail/normal_refit.h>
 #include <pcl_holefill/detail/stray_points.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
@@ -75,9 +76,6 @@ constexpr float kMaxRimGapAlongNormal = static_cast<float> (200.0 * M_PI / 180.0
 // 100,000 random samples of a cube, exact normals: max error 0.20, now
 // 0.0043; an edge hole at 0.3 % noise: 0.097, now 0.011).
 constexpr float kRimPlaneSlope = 0.05f;
-// Rim planes whose normals are within 25 degrees are one face's (as
-// detail::findCreaseChords labels the rim's arcs).
-constexpr float kSameFaceCosine = 0.906f;
 // Directions more than 120 degrees apart are opposite sides (betweenTwoCreases).
 constexpr float kOppositeSidesCosine = -0.5f;
 // A narrow face's planes are used only where the rim's normals spread less
@@ -1201,11 +1199,12 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
       strip.push_back (i);
   }
   const std::size_t away_from_creases = normals.size ();
+  const float same_face = std::cos (detail::kSameFaceDegrees * static_cast<float> (M_PI) / 180.f);
   for (const int i : strip)
   {
     const Eigen::Vector3f normal = cloud[i].getNormalVector3fMap ().normalized ();
     if (std::none_of (normals.begin (), normals.begin () + away_from_creases,
-                      [&] (const Eigen::Vector3f &m) { return m.dot (normal) > detail::kSameFaceCosine; }))
+                      [&] (const Eigen::Vector3f &m) { return m.dot (normal) > same_face; }))
     {
       points.push_back (cloud[i].getVector3fMap ());
       normals.push_back (normal);

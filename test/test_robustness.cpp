@@ -208,7 +208,9 @@ TEST (LoopTracing, TwoHolesAcrossANarrowBridgeAreBothFound)
       }
       EXPECT_EQ (sides.size (), 2u);
       if (sides.size () == 2u)
+      {
         EXPECT_LT (sides[0] * sides[1], 0.f);  // one on each side of the bridge
+      }
     }
 }
 

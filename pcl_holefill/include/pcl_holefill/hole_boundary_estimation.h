@@ -15,7 +15,6 @@
 
 #include <Eigen/Core>
 
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -174,19 +173,28 @@ private:
     float spacing;    //!< distance to its nearest distinct neighbour
     float second_spacing;  //!< ... and to its second nearest (infinite without one)
     Eigen::Vector3f walk_normal = Eigen::Vector3f::Zero ();  //!< the loop tracing's normal (tracingNormal)
-    std::size_t nearest_at = 0;  //!< its k nearest: RimCandidates::nearest from here ...
+    int nearest_store = 0;       //!< its k nearest: RimCandidates::nearest[nearest_store] ...
+    std::size_t nearest_at = 0;  //!< ... from here ...
     int nearest_count = 0;       //!< ... this many, nearest first (on its own side)
     bool on_thin_part = false;   //!< the other side of a thin part is among its k nearest
   };
 
-  /** The rim points of stage 1 and the k nearest of each, one store for
-    * all: a vector each cost more memory than the ids themselves, and a
-    * deque grows without copying (a fifth of a million random samples are
-    * candidates: 13 MB of ids). */
+  /** The rim points of stage 1 and the k nearest of each, in one store per
+    * thread that found them: a vector each cost more memory than the ids
+    * themselves (a fifth of a million random samples are candidates: 13 MB
+    * of ids). */
   struct RimCandidates
   {
     std::vector<RimPoint> points;
-    std::deque<int> nearest;
+    std::vector<std::vector<int>> nearest;
+  };
+
+  /** The rim points that one thread of findRimPoints found, and their k
+    * nearest. */
+  struct ThreadRimPoints
+  {
+    std::vector<RimPoint> points;
+    std::vector<int> nearest;
   };
 
   /** Validates parameters and input, builds the neighbour search over the
@@ -217,6 +225,11 @@ private:
     * sampling pitch. */
   RimCandidates
   findRimPoints (std::vector<float> &pitch_of);
+
+  /** The rim points that each thread of findRimPoints found, in usable
+    * order in one store. */
+  static RimCandidates
+  mergeRimCandidates (std::vector<ThreadRimPoints> &found);
 
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
     * size touches; the others border gaps of the sampling. Stray points

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <random>
 
 using namespace pcl_holefill;
 using Cloud = shapes::Cloud;
@@ -140,6 +141,52 @@ TEST (HoleBoundaryEstimation, InjectedKdTreeGivesTheSameLoops)
   ASSERT_EQ (with_tree.size (), 1u);
   ASSERT_EQ (with_grid.size (), 1u);
   EXPECT_EQ (with_tree[0].indices, with_grid[0].indices);
+}
+
+// Uniformly random samples put a fifth of all points through the rim
+// test's candidates, each thread into its own store: the loops and flags
+// must not depend on how many threads found them (more threads than cores
+// included), nor on the search (the grid's own kNN or a given k-d tree).
+TEST (HoleBoundaryEstimation, AnyThreadCountGivesTheSameLoopsOnRandomSamples)
+{
+  std::mt19937 random (7);
+  std::normal_distribution<float> gauss;
+  Cloud sphere;
+  for (int i = 0; i < 20000; ++i)
+  {
+    const Eigen::Vector3f n = Eigen::Vector3f (gauss (random), gauss (random), gauss (random)).normalized ();
+    pcl::PointNormal p;
+    p.getVector3fMap () = Eigen::Vector3f::Constant (0.5f) + 0.5f * n;
+    p.getNormalVector3fMap () = n;
+    sphere.push_back (p);
+  }
+  const auto cut = shapes::cutHoles (sphere, {{{0.5, 0.5, 1.0}, 0.15}, {{1.0, 0.5, 0.5}, 0.12}});
+  const auto run = [&cut] (unsigned threads, bool tree, std::vector<char> &flags) {
+    HoleBoundaryEstimation<pcl::PointNormal> est;
+    est.setInputCloud (cut.kept.makeShared ());
+    est.setNumberOfThreads (threads);
+    if (tree)
+      est.setSearchMethod (pcl::search::KdTree<pcl::PointNormal>::Ptr (new pcl::search::KdTree<pcl::PointNormal>));
+    std::vector<BoundaryLoop> loops;
+    est.compute (loops);
+    flags = est.getBoundaryFlags ();
+    return loops;
+  };
+  for (const bool tree : {false, true})
+  {
+    std::vector<char> one_flags;
+    const auto one = run (1, tree, one_flags);
+    EXPECT_EQ (countHoles (one), 2u) << "k-d tree: " << tree;
+    for (const unsigned threads : {2u, 5u})
+    {
+      std::vector<char> flags;
+      const auto many = run (threads, tree, flags);
+      EXPECT_EQ (flags, one_flags) << threads << " threads, k-d tree: " << tree;
+      ASSERT_EQ (many.size (), one.size ()) << threads << " threads, k-d tree: " << tree;
+      for (std::size_t l = 0; l < one.size (); ++l)
+        EXPECT_EQ (many[l].indices, one[l].indices) << threads << " threads, loop " << l;
+    }
+  }
 }
 
 TEST (HoleBoundaryEstimation, SemiAutomaticModeRefusesFeaturePointsOutsideTheCloud)

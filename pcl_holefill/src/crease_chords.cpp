@@ -284,7 +284,7 @@ findCreaseChords (const std::vector<Eigen::Vector3f> &positions, const std::vect
     const Eigen::Vector3f sum = normalSum (normals, first, std::max (count, 0));
     label[a] = -1;
     for (std::size_t f = 0; f < face_sums.size () && label[a] < 0 && sum.norm () > 0.f; ++f)
-      if (face_sums[f].normalized ().dot (sum.normalized ()) > cosine (kSameFaceDegrees))
+      if (face_sums[f].normalized ().dot (sum.normalized ()) > sameFaceCosine ())
         label[a] = static_cast<int> (f);
     if (label[a] < 0)
     {
@@ -356,6 +356,12 @@ findCreaseChords (const std::vector<Eigen::Vector3f> &positions, const std::vect
     chords.push_back (chord);
   }
   return chords;
+}
+
+float
+sameFaceCosine ()
+{
+  return cosine (kSameFaceDegrees);
 }
 
 }  // namespace pcl_holefill::detail

@@ -14,6 +14,11 @@ namespace pcl_holefill::detail
   * angle of each other (degrees) are one face's. */
 constexpr float kSameFaceDegrees = 25.f;
 
+/** cos (kSameFaceDegrees): two unit normals with a larger dot product are
+  * one face's. */
+float
+sameFaceCosine ();
+
 /** \brief A crease that crosses a hole, as the rim shows it: the rim turns
   * from face A to face B at \a from and back at \a to, and the crease
   * inside the hole is taken as the chord between them.

@@ -440,9 +440,11 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     for (int j = 0; j < count; ++j)
       nearest_first[j] = {d2[j], ids[j]};
     std::sort (nearest_first, nearest_first + count);
-    ThreadRimPoints &mine = found[static_cast<std::size_t> (detail::threadNumber ())];
+    const int thread = detail::threadNumber ();
+    ThreadRimPoints &mine = found[static_cast<std::size_t> (thread)];
     RimPoint point{static_cast<int> (i), gap, spacing, std::sqrt (nearest.second)};
     point.on_thin_part = on_thin_part;
+    point.nearest_store = thread;
     point.nearest_at = mine.nearest.size ();
     point.nearest_count = count;
     for (int j = 0; j < count; ++j)
@@ -496,15 +498,11 @@ HoleBoundaryEstimation<PointT>::mergeRimCandidates (std::vector<ThreadRimPoints>
   for (const auto &f : found)
     count += f.points.size ();
   rim.points.reserve (count);
-  for (std::size_t t = 0; t < found.size (); ++t)
+  for (auto &f : found)
   {
-    for (RimPoint &point : found[t].points)
-    {
-      point.nearest_store = static_cast<int> (t);
-      rim.points.push_back (point);
-    }
-    std::vector<RimPoint> ().swap (found[t].points);
-    rim.nearest.push_back (std::move (found[t].nearest));
+    rim.points.insert (rim.points.end (), f.points.begin (), f.points.end ());
+    std::vector<RimPoint> ().swap (f.points);
+    rim.nearest.push_back (std::move (f.nearest));  // RimPoint::nearest_store: the finder's number
   }
   std::sort (rim.points.begin (), rim.points.end (), [] (const auto &a, const auto &b) { return a.local < b.local; });
   return rim;

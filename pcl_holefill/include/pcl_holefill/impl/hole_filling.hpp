@@ -1199,7 +1199,7 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
       strip.push_back (i);
   }
   const std::size_t away_from_creases = normals.size ();
-  const float same_face = std::cos (detail::kSameFaceDegrees * static_cast<float> (M_PI) / 180.f);
+  const float same_face = detail::sameFaceCosine ();
   for (const int i : strip)
   {
     const Eigen::Vector3f normal = cloud[i].getNormalVector3fMap ().normalized ();

@@ -116,6 +116,17 @@ TEST (Strays, NeitherTiltTheRimNorCarryTheFillOffTheSurface)
     const Outcome o = fillCase (c);
     EXPECT_LE (o.fill.max_error, 0.4 * corpus::pitch (c.shape, c.points)) << shape.name;  // reached: 0.07, 0.10 pitch
   }
+  // The L-block, density varying, PCA normals: one stray 4 pitches inside,
+  // under the hole at a corner, was among the k nearest of the rim points of
+  // two of its three faces and closed their angular gaps; the hole went
+  // unfound (83.2 % covered).
+  auto c = makeCase (corpus::lBlock (), Sampling::kVarying, 0.0, true, true);
+  c.strays = 0.005;
+  const Outcome o = fillCase (c);
+  EXPECT_EQ (o.detection.found, o.detection.cut);
+  EXPECT_EQ (o.detection.false_holes, 0u);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+  EXPECT_GE (o.fill.coverage, 0.98);  // reached: 99.5 %
 }
 
 // The pitch means the same for every sampler: sqrt(area per point).

@@ -226,6 +226,27 @@ private:
   RimCandidates
   findRimPoints (std::vector<float> &pitch_of);
 
+  /** Stage 1 again, without the strays (markStrays), on the points that
+    * held one among their k nearest (pointsBesideStrays; \a test_point:
+    * findRimPoints' test); their first verdicts in \a found go. */
+  template <typename TestPoint> void
+  retestBesideStrays (const std::vector<float> &spacing_of, const std::vector<float> &pitch_of,
+                      const std::vector<float> &reach_of, std::vector<ThreadRimPoints> &found,
+                      const TestPoint &test_point);
+
+  /** Marks stray_ (detail::isStrayPoint past kRimStrayPitches): points off
+    * the surface, found among those whose nearest neighbour is far for their
+    * pitch (\a spacing_of, \a pitch_of of stage 1). Returns each stray with
+    * the reach of its k nearest. */
+  std::vector<std::pair<int, float>>
+  markStrays (const std::vector<float> &spacing_of, const std::vector<float> &pitch_of);
+
+  /** The usable points, not strays, that hold one of \a strays (markStrays)
+    * among their k nearest (within \a reach_of, the squared distance of
+    * each point's k-th nearest), sorted. */
+  std::vector<int>
+  pointsBesideStrays (const std::vector<std::pair<int, float>> &strays, const std::vector<float> &reach_of) const;
+
   /** The rim points that each thread of findRimPoints found, in usable
     * order in one store. */
   static RimCandidates
@@ -290,7 +311,8 @@ private:
   Eigen::Vector3f
   tracingNormal (int local, const std::vector<int> &ids) const;
 
-  /** Usable points within \a radius of usable point \a local, as local ids. */
+  /** Usable points within \a radius of usable point \a local, as local ids,
+    * strays (stray_) left out. */
   void
   usableWithin (int local, float radius, std::vector<int> &ids) const;
 
@@ -316,6 +338,7 @@ private:
   std::vector<std::pair<int, float>> rim_spacing_;  //!< (usable point, nearest distance) of rim points, sorted
   detail::PointGrid grid_;                        //!< over positions_, when no search is set
   std::vector<char> flags_;
+  std::vector<char> stray_;  //!< usable point -> off the surface (markStrays); empty when none
   float mean_spacing_ = 0.f;
   float mean_pitch_ = 0.f;
 };

@@ -15,7 +15,8 @@ case "$mode" in demo|test) ;; *) echo "usage: $0 demo|test" >&2; exit 2 ;; esac
 sudo_if_needed() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 packages="cmake g++ make ccache libpcl-dev libeigen3-dev libboost-dev libgtest-dev libpng-dev"
 packages="$packages python3-dev pybind11-dev python3-numpy"
-[ "$mode" = test ] && packages="$packages python3-pytest python3-open3d"
+# libcgal-demo: fandisk.off, a CAD model of the corpus (its tests skip without it)
+[ "$mode" = test ] && packages="$packages python3-pytest python3-open3d libcgal-demo"
 [ "$mode" = test ] && [ -z "${SKIP_SANITIZERS:-}" ] && packages="$packages clang libclang-rt-14-dev"
 missing=$(for p in $packages; do dpkg -s "$p" >/dev/null 2>&1 || echo "$p"; done)
 if [ -n "$missing" ]; then

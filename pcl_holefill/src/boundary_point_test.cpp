@@ -34,8 +34,6 @@ turnKey (const Eigen::Vector2f &a, const Eigen::Vector2f &b)
   const float dot = a.dot (b);
   return cross >= 0.f ? 1.f - dot : 3.f + dot;
 }
-// Normals more opposed than this (cosine) belong to the other side of a thin part.
-constexpr float kOtherSideCosine = -0.3f;
 // The disc may lean this far (radians) from the gap's bisector ...
 constexpr float kDiscLeans[] = {0.f, 0.26f, -0.26f, 0.52f, -0.52f, 0.79f, -0.79f};
 // ... while staying this far (radians) inside the gap.

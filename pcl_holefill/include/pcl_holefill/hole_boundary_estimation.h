@@ -195,6 +195,7 @@ private:
   {
     std::vector<RimPoint> points;
     std::vector<int> nearest;
+    std::vector<int> turned_over;  //!< usable points whose normal faces the wrong way (normalTurnedOver)
   };
 
   /** Validates parameters and input, builds the neighbour search over the
@@ -233,6 +234,17 @@ private:
   retestBesideStrays (const std::vector<float> &spacing_of, const std::vector<float> &pitch_of,
                       const std::vector<float> &reach_of, std::vector<ThreadRimPoints> &found,
                       const TestPoint &test_point);
+
+  /** True when more than three in four of the \a count neighbours \a ids
+    * of usable point \a local face away from it (detail::kOtherSideCosine):
+    * its normal has the wrong sign. */
+  bool
+  normalTurnedOver (std::size_t local, const int *ids, int count) const;
+
+  /** Turns over the normals_ that stage 1 found facing the wrong way
+    * (ThreadRimPoints::turned_over), each once. */
+  void
+  turnNormalsOver (std::vector<ThreadRimPoints> &found);
 
   /** Marks stray_ (detail::isStrayPoint past kRimStrayPitches): points off
     * the surface, found among those whose nearest neighbour is far for their
@@ -282,12 +294,12 @@ private:
   float
   spacingOf (int local) const;
 
-  /** True when usable point \a local lies on a thin part: of its \a count
-    * nearest \a ids, enough lie on the other side (\a other_side, set for
-    * each: detail::onOtherSideOfThinPart) and few face the other way
-    * without (noise). */
+  /** True when usable point \a local, of unit normal \a normal, lies on a
+    * thin part: of its \a count nearest \a ids, enough lie on the other
+    * side (\a other_side, set for each: detail::onOtherSideOfThinPart) and
+    * few face the other way without (noise). */
   bool
-  onThinPart (std::size_t local, const int *ids, int count, bool *other_side) const;
+  onThinPart (std::size_t local, const Eigen::Vector3f &normal, const int *ids, int count, bool *other_side) const;
 
   /** True when a disc of diameter \a diameter, empty of points on this side
     * of the surface, touches usable point \a local from inside its empty

@@ -45,6 +45,9 @@ unfoldIntoTangentPlane (const Eigen::Vector3f &offset, const Eigen::Vector3f &un
 // sheet, and the corner hole there lost rim points (max error 0.015 ->
 // 0.029 at 0.3 % noise).
 constexpr float kOppositeNormalCosine = -0.97f;
+// The empty-disc test leaves out neighbours whose normals are more opposed
+// than this (cosine) to the point's: the other side of a thin part.
+constexpr float kOtherSideCosine = -0.3f;
 // A neighbour of the other face lies below the tangent plane by at least
 // this share of its distance (a sheet as thick as 0.3 pitch, seen from 2
 // pitches); a normal flipped by a bad orientation lies about in the plane

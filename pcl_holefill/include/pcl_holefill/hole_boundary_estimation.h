@@ -323,8 +323,12 @@ private:
   Eigen::Vector3f
   tracingNormal (int local, const std::vector<int> &ids) const;
 
+  /** Is usable point \a local a stray that detection sets aside (stray_)? */
+  bool
+  setAside (int local) const { return !stray_.empty () && stray_[static_cast<std::size_t> (local)]; }
+
   /** Usable points within \a radius of usable point \a local, as local ids,
-    * strays (stray_) left out. */
+    * strays (setAside) left out. */
   void
   usableWithin (int local, float radius, std::vector<int> &ids) const;
 

@@ -244,14 +244,14 @@ HoleBoundaryEstimation<PointT>::usableWithin (int local, float radius, std::vect
     std::vector<float> d2;
     search_->radiusSearch ((*input_)[(*usable_)[local]], radius, found, d2);
     for (const auto i : found)
-      if (local_of_[i] >= 0 && local_of_[i] != local && !(!stray_.empty () && stray_[local_of_[i]]))
+      if (local_of_[i] >= 0 && local_of_[i] != local && !setAside (local_of_[i]))
         ids.push_back (local_of_[i]);
     return;
   }
   thread_local std::vector<detail::PointGrid::Neighbour> found;
   grid_.withinRadius (positions_[local], radius, found);
   for (const auto &n : found)
-    if (n.id != local && !(!stray_.empty () && stray_[n.id]))
+    if (n.id != local && !setAside (n.id))
       ids.push_back (n.id);
 }
 
@@ -427,8 +427,9 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
           ids[count] = all_ids[j];
           d2[count++] = all_d2[j];
         }
-      return count > 0 ? detail::largestAngularGap (positions_[i], normal, positions_.data (), normals_.data (), ids, count)
-                       : detail::AngularGap{};
+      return count > 0
+                 ? detail::largestAngularGap (positions_[i], normal, positions_.data (), normals_.data (), ids, count)
+                 : detail::AngularGap{};
     };
     detail::AngularGap gap = own_side (normals_[i]);
     const int thread = detail::threadNumber ();
@@ -577,7 +578,7 @@ HoleBoundaryEstimation<PointT>::retestBesideStrays (const std::vector<float> &sp
     nearestUsable (q, 2 * k_, ids, d2);
     std::size_t kept = 0;
     for (std::size_t j = 0; j < ids.size () && kept < static_cast<std::size_t> (k_); ++j)
-      if (!stray_[ids[j]])
+      if (!setAside (ids[j]))
       {
         ids[kept] = ids[j];
         d2[kept++] = d2[j];
@@ -590,8 +591,8 @@ HoleBoundaryEstimation<PointT>::retestBesideStrays (const std::vector<float> &sp
   {
     auto &points = found[t].points;
     const auto first_pass = points.begin () + static_cast<std::ptrdiff_t> (first_pass_end[t]);
-    const auto kept_end = std::remove_if (points.begin (), first_pass, [&] (const RimPoint &r) { return was_retested (r.local); });
-    points.erase (kept_end, first_pass);
+    const auto retested_point = [&] (const RimPoint &r) { return was_retested (r.local); };
+    points.erase (std::remove_if (points.begin (), first_pass, retested_point), first_pass);
     auto &turned = found[t].turned_over;
     const auto turned_first_pass = turned.begin () + static_cast<std::ptrdiff_t> (first_turned_end[t]);
     turned.erase (std::remove_if (turned.begin (), turned_first_pass, was_retested), turned_first_pass);

@@ -97,7 +97,15 @@ INSTANTIATE_TEST_SUITE_P (
 TEST (HoleBoundaryEstimation, ClosedShapesWithoutHolesHaveNoLoop)
 {
   for (const auto &shape : {shapes::sphere (), shapes::cube ()})
-    EXPECT_TRUE (detect (shape.sample (6000)).empty ()) << shape.name;
+  {
+    HoleBoundaryEstimation<pcl::PointNormal> estimation;
+    estimation.setInputCloud (shape.sample (6000).makeShared ());
+    std::vector<BoundaryLoop> loops;
+    estimation.compute (loops);
+    EXPECT_TRUE (loops.empty ()) << shape.name;
+    EXPECT_EQ (estimation.getStrayCount (), 0u) << shape.name;         // every point on the surface
+    EXPECT_EQ (estimation.getTurnedNormalCount (), 0u) << shape.name;  // exact normals
+  }
 }
 
 TEST (HoleBoundaryEstimation, OuterBordersAreLabelledAsBorders)
@@ -262,7 +270,12 @@ TEST (HoleBoundaryEstimation, StraysUnderAHoleLeaveItsRimWhole)
     stray.normal_z = 1.f;
     cut.kept.push_back (stray);
   }
-  const auto loops = detect (cut.kept);
+  HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (cut.kept.makeShared ());
+  std::vector<BoundaryLoop> loops;
+  estimation.compute (loops);
+  EXPECT_EQ (estimation.getStrayCount (), static_cast<std::size_t> (strays));
+  EXPECT_EQ (estimation.getTurnedNormalCount (), 0u);
   ASSERT_EQ (countHoles (loops), 1u);
   const auto hole_loop = std::find_if (loops.begin (), loops.end (), [] (const auto &l) { return l.is_hole; });
   EXPECT_TRUE (hole_loop->closed);

@@ -152,6 +152,18 @@ public:
   float
   getMeanPitch () const { return mean_pitch_; }
 
+  /** \brief After compute(): points set aside as strays (off the surface,
+    * detail::isStrayPoint); the rim test ran again without them beside them. */
+  std::size_t
+  getStrayCount () const { return stray_count_; }
+
+  /** \brief After compute(): rim candidates whose normal faced the wrong way
+    * (nearly all their neighbours' face away): detection turned them over;
+    * the cloud keeps its normals. More than none: orient the normals (e.g.
+    * orientNormalsConsistently) or check their source. */
+  std::size_t
+  getTurnedNormalCount () const { return turned_normal_count_; }
+
 protected:
   using pcl::PCLBase<PointT>::input_;
   using pcl::PCLBase<PointT>::indices_;
@@ -357,6 +369,8 @@ private:
   std::vector<char> stray_;  //!< usable point -> off the surface (markStrays); empty when none
   float mean_spacing_ = 0.f;
   float mean_pitch_ = 0.f;
+  std::size_t stray_count_ = 0;
+  std::size_t turned_normal_count_ = 0;
 };
 
 }  // namespace pcl_holefill

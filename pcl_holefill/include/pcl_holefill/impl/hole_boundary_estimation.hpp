@@ -57,6 +57,7 @@ HoleBoundaryEstimation<PointT>::prepare (const char *caller)
   normals_.clear ();
   rim_spacing_.clear ();
   stray_.clear ();
+  stray_count_ = turned_normal_count_ = 0;
   mean_spacing_ = 0.f;
   flags_.assign (input_ ? input_->size () : 0, 0);
   if (!input_ || input_->empty ())
@@ -543,6 +544,12 @@ HoleBoundaryEstimation<PointT>::turnNormalsOver (std::vector<ThreadRimPoints> &f
   turned.erase (std::unique (turned.begin (), turned.end ()), turned.end ());
   for (const int i : turned)
     normals_[static_cast<std::size_t> (i)] = -normals_[static_cast<std::size_t> (i)];
+  turned_normal_count_ = turned.size ();
+  if (!turned.empty ())
+    PCL_WARN ("[pcl_holefill::%s::compute] %zu normals face away from nearly all their neighbours' (their "
+              "orientation failed, as it can at noisy corners): detection turned them over; the fill and "
+              "the output keep them as given.\n",
+              getClassName ().c_str (), turned.size ());
 }
 
 template <typename PointT> template <typename TestPoint> void
@@ -637,6 +644,7 @@ HoleBoundaryEstimation<PointT>::markStrays (const std::vector<float> &spacing_of
   for (std::size_t s = 0; s < suspects.size (); ++s)
     if (reach[s] >= 0.f)
       strays.emplace_back (suspects[s], reach[s]);
+  stray_count_ = strays.size ();
   if (!strays.empty ())
   {
     stray_.assign (positions_.size (), 0);

@@ -258,7 +258,7 @@ private:
   void
   turnNormalsOver (std::vector<ThreadRimPoints> &found);
 
-  /** Marks stray_ (detail::isStrayPoint past kRimStrayPitches): points off
+  /** Marks stray_ (isStray): points off
     * the surface, found among those whose nearest neighbour is far for their
     * pitch (\a spacing_of, \a pitch_of of stage 1). Returns each stray with
     * the reach of its k nearest. */
@@ -283,10 +283,11 @@ private:
   void
   keepHoleSizedGaps (RimCandidates &rim, const std::vector<float> &pitch_of) const;
 
-  /** Is rim \a point, of neighbours \a ids, off the surface
-    * (detail::isStrayPoint over their pitch_of)? */
+  /** Is a point whose nearest and second nearest neighbours lie at
+    * \a nearest and \a second, of neighbours \a ids, off the surface
+    * (detail::isStrayPoint past kRimStrayPitches, over their pitch_of)? */
   static bool
-  isStray (const RimPoint &point, const std::vector<int> &ids, const std::vector<float> &pitch_of);
+  isStray (float nearest, float second, const std::vector<int> &ids, const std::vector<float> &pitch_of);
 
   /** Stage 3 for one traced loop (members index \a rim): the midpoint
     * refinement of section 3.3, its measures, and hole or border. */

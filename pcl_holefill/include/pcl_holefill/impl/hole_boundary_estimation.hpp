@@ -627,17 +627,13 @@ HoleBoundaryEstimation<PointT>::markStrays (const std::vector<float> &spacing_of
     thread_local std::vector<float> d2;
     nearestUsable (static_cast<std::size_t> (suspects[s]), k_, ids, d2);
     detail::NearestTwo nearest;
-    float around[64];
-    int count = 0;
     float farthest = 0.f;
-    for (std::size_t j = 0; j < ids.size () && count < 64; ++j)
+    for (const float d : d2)
     {
-      nearest.add (d2[j]);
-      farthest = std::max (farthest, d2[j]);
-      around[count++] = pitch_of[ids[j]];
+      nearest.add (d);
+      farthest = std::max (farthest, d);
     }
-    if (detail::isStrayPoint (std::sqrt (nearest.nearest), std::sqrt (nearest.second), around, count,
-                              detail::kRimStrayPitches))
+    if (isStray (std::sqrt (nearest.nearest), std::sqrt (nearest.second), ids, pitch_of))
       reach[s] = std::sqrt (farthest);
   }
   std::vector<std::pair<int, float>> strays;
@@ -698,7 +694,7 @@ HoleBoundaryEstimation<PointT>::mergeRimCandidates (std::vector<ThreadRimPoints>
 }
 
 template <typename PointT> bool
-HoleBoundaryEstimation<PointT>::isStray (const RimPoint &point, const std::vector<int> &ids,
+HoleBoundaryEstimation<PointT>::isStray (float nearest, float second, const std::vector<int> &ids,
                                          const std::vector<float> &pitch_of)
 {
   // A scanner's stray next to a hole sees the hole's side empty too, and a
@@ -710,7 +706,7 @@ HoleBoundaryEstimation<PointT>::isStray (const RimPoint &point, const std::vecto
   for (const int j : ids)
     if (count < 64)
       around[count++] = pitch_of[j];
-  return detail::isStrayPoint (point.spacing, point.second_spacing, around, count, detail::kRimStrayPitches);
+  return detail::isStrayPoint (nearest, second, around, count, detail::kRimStrayPitches);
 }
 
 template <typename PointT> void
@@ -726,7 +722,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
     const auto first = rim.nearest[static_cast<std::size_t> (rim_points[r].nearest_store)].begin () +
                        static_cast<std::ptrdiff_t> (rim_points[r].nearest_at);
     ids.assign (first, first + rim_points[r].nearest_count);
-    if (isStray (rim_points[r], ids, pitch_of))
+    if (isStray (rim_points[r].spacing, rim_points[r].second_spacing, ids, pitch_of))
       continue;
     float pitch = pitch_of[local];
     for (const int j : ids)

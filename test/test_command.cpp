@@ -428,6 +428,7 @@ TEST_F (Command, BadInputGetsOneLineAndANonZeroExit)
       path ("in.pcd") + " " + path ("o.pcd") + " -radius -1",
       path ("in.pcd") + " " + path ("o.pcd") + " -sigma_n nan",
       path ("in.pcd") + " " + path ("o.pcd") + " -max_passes -1",
+      path ("in.pcd") + " " + path ("o.pcd") + " -min_hole_size 1",  // 0 (auto) or 2..100
       path ("in.pcd") + " " + path ("o.pcd") + " -no_such_option",
       path ("in.pcd"),
   };
@@ -481,6 +482,7 @@ TEST_F (Command, VerboseShowsEachPassAndChangesNothing)
   std::ifstream out (dir_ / "stdout");
   const std::string debug ((std::istreambuf_iterator<char> (out)), {});
   EXPECT_NE (debug.find ("contractUntilTermination] pass 0: |B'|"), std::string::npos) << debug;
+  EXPECT_NE (debug.find ("min hole size"), std::string::npos) << debug;  // and why that size
   std::ifstream quiet (path ("quiet.pcd"), std::ios::binary), verbose (path ("verbose.pcd"), std::ios::binary);
   EXPECT_EQ (std::string (std::istreambuf_iterator<char> (quiet), {}),
              std::string (std::istreambuf_iterator<char> (verbose), {}));
@@ -588,6 +590,9 @@ TEST_F (Command, DetectOnlyWritesTheLoopsThatFillingTakes)
   const std::string json ((std::istreambuf_iterator<char> (report)), {});
   EXPECT_NE (json.find ("\"hole\": true"), std::string::npos) << json;
   EXPECT_NE (json.find ("\"indices\": ["), std::string::npos) << json;
+  // The min hole size applied, chosen from the sampling's evenness.
+  EXPECT_NE (json.find ("\"sampling_evenness\": "), std::string::npos) << json;
+  EXPECT_NE (json.find ("\"min_hole_size\": "), std::string::npos) << json;
   // The loops file fills as detection does.
   ASSERT_TRUE (fs::exists (path ("d.pcd.holes.txt")));
   ASSERT_EQ (run (path ("in.pcd") + " " + path ("given.pcd") + " -holes " + path ("d.pcd.holes.txt")), 0)

@@ -88,7 +88,8 @@ usage (const char *program)
       << parameterUsage (P::kSigmaR, "S") << parameterUsage (P::kSpacingFactor, "F")
       << parameterUsage (P::kSigmaD, "S") << parameterUsage (P::kRadiusShrinkFactor, "F")
       << parameterUsage (P::kTerminationRatio, "T") << parameterUsage (P::kMaxPasses, "N")
-      << parameterUsage (P::kMinHoleSize, "P") << "                    (under 5, the gaps of random samples count)\n"
+      << parameterUsage (P::kMinHoleSize, "P|auto")
+      << "                    (under 5, the gaps of uniformly random samples count)\n"
       << parameterUsage (P::kMaxHoleDiameter, "D")
       << switchUsage (P::kFirstOrder) << switchUsage (P::kDenoise)
       << "  -holes FILE       fill these loops (one per line, point indices) instead of\n"
@@ -168,9 +169,11 @@ parseFloat (const std::string &arg, const FloatOption &f, const std::string &tex
             std::string &error)
 {
   float v = 0.f;
-  if (!toFloat (text, v) || !f.spec->accepts (v))
+  const bool automatic = f.spec->zero_is_automatic && text == "auto";
+  if (!automatic && (!toFloat (text, v) || !f.spec->accepts (v)))
   {
-    error = arg + " takes a number " + pcl_holefill::parameters::rangeText (*f.spec) + ", not '" + text + "'";
+    error = arg + " takes a number " + pcl_holefill::parameters::rangeText (*f.spec) +
+            (f.spec->zero_is_automatic ? " or 'auto' (= 0)" : "") + ", not '" + text + "'";
     return false;
   }
   options.*(f.field) = v;

@@ -78,13 +78,17 @@ detectOnly (const Options &options, const PreparedCloud &prepared)
   if (!options.report_file.empty ())
   {
     std::ofstream report (options.report_file);
-    report << loopsJson (options.input, prepared.points->size (), loops);
+    report << loopsJson (options.input, prepared.points->size (), loops,
+                         {estimation.getSamplingEvenness (), estimation.getMinHoleSizeUsed ()});
     if (!report)
       return fail ("cannot write '" + options.report_file + "'");
   }
   const auto holes = std::count_if (loops.begin (), loops.end (), [] (const auto &l) { return l.is_hole; });
   if (!options.quiet)
-    std::fprintf (stderr, "pcl_holefill: %ld holes and %ld borders found; wrote %s and %s\n", static_cast<long> (holes),
+    std::fprintf (stderr,
+                  "pcl_holefill: %ld holes (of at least %.2g sampling pitches) and %ld borders found; "
+                  "wrote %s and %s\n",
+                  static_cast<long> (holes), static_cast<double> (estimation.getMinHoleSizeUsed ()),
                   static_cast<long> (loops.size ()) - static_cast<long> (holes), options.output.c_str (),
                   holes_path.c_str ());
   return 0;

@@ -86,10 +86,13 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
 }
 
 std::string
-loopsJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::BoundaryLoop> &loops)
+loopsJson (const std::string &input, std::size_t input_points, const std::vector<pcl_holefill::BoundaryLoop> &loops,
+           const DetectionSummary &summary)
 {
   std::ostringstream out;
-  out << "{\n  \"input\": " << quoted (input) << ",\n  \"input_points\": " << input_points << ",\n  \"loops\": [";
+  out << "{\n  \"input\": " << quoted (input) << ",\n  \"input_points\": " << input_points
+      << ",\n  \"sampling_evenness\": " << summary.sampling_evenness
+      << ",\n  \"min_hole_size\": " << summary.min_hole_size << ",\n  \"loops\": [";
   for (std::size_t i = 0; i < loops.size (); ++i)
   {
     const auto &l = loops[i];

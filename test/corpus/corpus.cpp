@@ -672,6 +672,8 @@ runCase (const Case &c)
         b = i;
     if (c.holes.empty ())
       continue;
+    o.reports_per_ball.resize (c.holes.size (), 0);
+    ++o.reports_per_ball[b];
     o.closed_but_open += r.closed && !covered[b] ? 1 : 0;
     o.open_but_covered += !r.closed && covered[b] ? 1 : 0;
   }

@@ -141,6 +141,8 @@ struct Outcome
   pcl_holefill::shapes::FillQuality fill;
   std::size_t input = 0, output = 0;
   std::size_t reported = 0, closed = 0;  //!< holes in HoleFilling's reports, and of those reported closed
+  /** Per cut ball, the reports about it (whose rim's centre is nearest to it). */
+  std::vector<std::size_t> reports_per_ball;
   /** Cut balls whose removed samples are covered (>= 99 % within 1.5 pitches of an output point). */
   std::size_t covered_balls = 0;
   /** Reports claiming closed whose nearest cut ball is not covered, and the reverse. */

@@ -471,6 +471,10 @@ def test_detect_holes_finds_two_holes_and_fill_takes_them():
     assert all(loop.dtype == np.int64 and loop.ndim == 1 for loop in loops)
     res = pcl_holefill.fill(kept, kept_normals, holes=loops[:1], quiet=True)
     assert len(res.reports) == 1 and res.filled.any()
+    # 'auto' is the default (0): the min hole size chosen from the sampling.
+    assert pcl_holefill.DEFAULTS["min_hole_size"] == 0
+    auto = pcl_holefill.detect_holes(kept, kept_normals, min_hole_size="auto")
+    assert [list(a) for a in auto] == [list(loop) for loop in loops]
 
 
 def test_normals_are_estimated_when_not_given(corner):
@@ -697,6 +701,8 @@ def test_nan_rows_are_kept_and_skipped(corner):
     (lambda p, n: pcl_holefill.fill(p, n, sigma_n="sharp"), ValueError, "sigma_n takes a number >= 0, 'auto' (= 0) or 'sup'"),
     (lambda p, n: pcl_holefill.fill(p, n, sigma_n=[1]), TypeError, "sigma_n takes"),
     (lambda p, n: pcl_holefill.fill(p, n, max_passes=-1), ValueError, "max_passes takes a whole number"),
+    (lambda p, n: pcl_holefill.fill(p, n, min_hole_size=1), ValueError, "or 'auto' (= 0)"),
+    (lambda p, n: pcl_holefill.fill(p, n, min_hole_size="small"), ValueError, "min_hole_size takes a number"),
     (lambda p, n: pcl_holefill.fill(p, n, max_passes=2.5), TypeError, "whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, threads=-1), ValueError, "threads takes a whole number"),
     (lambda p, n: pcl_holefill.fill(p, n, spacing=True), TypeError, "takes a number"),

@@ -112,6 +112,8 @@ public:
   /** \brief Smallest hole reported, as the diameter of the empty disc it
     * must hold, in local sampling pitches (sqrt of the surface area per
     * point, measured from the k nearest neighbours): parameters::kMinHoleSize.
+    * 0 (default): chosen from how evenly the cloud is sampled, 6 on
+    * uniformly random samples, 4 on even ones (getMinHoleSizeUsed ()).
     * Below 5 the gaps of uniformly random sampling are reported as holes. */
   void
   setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
@@ -151,6 +153,18 @@ public:
   /** \brief After compute(): mean sampling pitch, sqrt(area per point). */
   float
   getMeanPitch () const { return mean_pitch_; }
+
+  /** \brief After compute(): how evenly the cloud is sampled, the lower
+    * quartile of each point's nearest neighbour in its tangent plane over its
+    * pitch: about 0.3 for uniformly random samples, 0.4 for scan lines, 0.6
+    * for a jittered grid, 0.75-0.85 for Poisson-disk and voxel-grid samples. */
+  float
+  getSamplingEvenness () const { return sampling_evenness_; }
+
+  /** \brief After compute(): the min hole size applied (pitches): the one
+    * set, or the one chosen from getSamplingEvenness () (detail::minHoleSizeForEvenness). */
+  float
+  getMinHoleSizeUsed () const { return min_hole_size_used_; }
 
   /** \brief After compute(): points set aside as strays (off the surface,
     * detail::isStrayPoint); the rim test ran again without them beside them. */
@@ -276,6 +290,12 @@ private:
   static RimCandidates
   mergeRimCandidates (std::vector<ThreadRimPoints> &found);
 
+  /** Sets min_hole_size_used_: the min hole size set, or one for the
+    * sampling's evenness (the lower quartile of \a evenness_of, each point's
+    * tangential nearest neighbour over its pitch; reordered). */
+  void
+  chooseMinHoleSize (std::vector<float> &evenness_of);
+
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
     * size touches; the others border gaps of the sampling. Stray points
     * (detail::isStrayPoint: off the surface, their gap is their own) go too.
@@ -370,6 +390,8 @@ private:
   std::vector<char> stray_;  //!< usable point -> off the surface (markStrays); empty when none
   float mean_spacing_ = 0.f;
   float mean_pitch_ = 0.f;
+  float sampling_evenness_ = 0.f;
+  float min_hole_size_used_ = 0.f;
   std::size_t stray_count_ = 0;
   std::size_t turned_normal_count_ = 0;
 };

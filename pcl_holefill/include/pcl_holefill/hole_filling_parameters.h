@@ -31,11 +31,14 @@ struct ParameterSpec
   bool high_open;            //!< high itself refused
   bool infinity_allowed;     //!< +infinity accepted (sigma_n: kSup)
   const char *unit;          //!< unit, and what 0 means where it means "automatic"
+  bool zero_is_automatic = false;  //!< 0 accepted below low, meaning "automatic"
 
   /** \brief Is \a value in range? NaN never is. */
   bool
   accepts (float value) const
   {
+    if (zero_is_automatic && value == 0.f)
+      return true;
     if (std::isinf (value))
       return infinity_allowed && value > 0.f;
     return value >= low && (high_open ? value < high : value <= high);
@@ -104,8 +107,9 @@ constexpr ParameterSpec kMaxHoleDiameter{
     "cloud units; 0 = fill every hole"};
 constexpr ParameterSpec kMinHoleSize{
     "min hole size", "smallest hole, told from the gaps of the sampling", "-min_hole_size", "setMinHoleSize",
-    6.f, 2.f, 100.f, false, false,
-    "sampling pitches: the empty disc a hole must hold"};
+    0.f, 2.f, 100.f, false, false,
+    "sampling pitches: the empty disc a hole must hold; 0 = 6 (random samples) to 4 (even ones)",
+    true};
 
 // Detection only (HoleBoundaryEstimation; HoleFilling uses the defaults).
 
@@ -158,6 +162,8 @@ inline std::string
 rangeText (const ParameterSpec &spec)
 {
   std::ostringstream text;
+  if (spec.zero_is_automatic)
+    text << "0 or ";
   if (spec.high == kUnbounded)
     text << ">= " << spec.low;
   else

@@ -45,7 +45,9 @@ _OPTION_HELP = {
     "max_passes": "bound on contraction passes per hole (0..100000); 0 = 4 x hole diameter / d_eq + 20",
     "zero_order": "the paper's eq. (1) as printed (cones on smooth holes)",
     "denoise": "bilateral preprocessing first (moves input points)",
-    "min_hole_size": "smallest hole: an empty disc this many sampling pitches across (2..100)",
+    "min_hole_size": "smallest hole: an empty disc this many sampling pitches across (2..100), or "
+                     "'auto' (= 0: from how evenly the cloud is sampled, 6 on uniformly random samples, "
+                     "4 on even ones)",
     "max_hole_size": "leave holes wider than this (cloud units) alone; 0 = fill all",
     "threads": "0 = all cores (the output does not depend on it)",
     "quiet": "print errors only, no warnings",
@@ -124,6 +126,8 @@ def _words(options):
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
                 raise TypeError(f"{name} takes a whole number, not {value!r}")
             words += ["-" + name, str(int(value))]
+        elif name == "min_hole_size" and isinstance(value, str):
+            words += ["-min_hole_size", value]
         elif name in _FLOATS:
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
                 raise TypeError(f"{name} takes a number, not {value!r}")
@@ -257,7 +261,8 @@ Args:
     points:  (N, 3) float32 or float64 array (rows with NaN are skipped).
     normals: (N, 3) array, or None to estimate them as fill() does.
 
-Options: min_hole_size (default {DEFAULTS['min_hole_size']!r}, in sampling pitches),
+Options: min_hole_size (default {DEFAULTS['min_hole_size']!r} = 'auto', in sampling pitches;
+    auto: 6 on uniformly random samples, 4 on even ones),
     max_hole_size (default {DEFAULTS['max_hole_size']!r}, cloud units, 0 = no limit),
     threads (default {DEFAULTS['threads']!r}), quiet.
 

@@ -9,6 +9,7 @@
 #include <pcl_holefill/hole_boundary_estimation.h>
 #include <pcl_holefill/detail/loop_tracing.h>
 #include <pcl_holefill/detail/normal_refit.h>
+#include <pcl_holefill/detail/sampling_evenness.h>
 #include <pcl_holefill/detail/stray_points.h>
 #include <pcl_holefill/detail/point_validity.h>
 #include <pcl_holefill/detail/thread_count.h>
@@ -401,9 +402,10 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   // all points are candidates, and one store under a lock made the threads
   // queue for it.
   std::vector<ThreadRimPoints> found (static_cast<std::size_t> (threads));
-  std::vector<float> spacing_of, reach_of;
+  std::vector<float> spacing_of, reach_of, evenness_of;
   detail::resizeTouched (spacing_of, n, threads, 0.f);
   detail::resizeTouched (reach_of, n, threads, 0.f);
+  detail::resizeTouched (evenness_of, n, threads, 0.f);
   pitch_of.clear ();
   detail::resizeTouched (pitch_of, n, threads, 0.f);
   auto test_point = [&] (std::size_t i, const int *all_ids, const float *all_d2, int all_count) {
@@ -452,6 +454,9 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     const float spacing = std::isfinite (nearest.nearest) ? std::sqrt (nearest.nearest) : 0.f;
     spacing_of[i] = spacing;
     pitch_of[i] = detail::samplingPitch (farthest, count, gap.angle > angle_threshold_ ? gap.angle : 0.f);
+    if (i % detail::kEvennessStride == 0 && pitch_of[i] > 0.f)
+      evenness_of[i] =
+          detail::tangentialNearest (positions_[i], normals_[i], positions_.data (), ids, count) / pitch_of[i];
     if (!(gap.angle > angle_threshold_))
       return;
     // Stage 1b reads these neighbours again: kept nearest first, as a search
@@ -505,8 +510,25 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   }
   mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
   mean_pitch_ = static_cast<float> (pitch_sum / static_cast<double> (n));
+  chooseMinHoleSize (evenness_of);
   turnNormalsOver (found);
   return mergeRimCandidates (found);
+}
+
+template <typename PointT> void
+HoleBoundaryEstimation<PointT>::chooseMinHoleSize (std::vector<float> &evenness_of)
+{
+  // A hole must be wider than the gaps the sampling leaves by chance, and
+  // how wide those get depends on the sampler: a 6-pitch hole in one face of
+  // a fin (the other face's hole seen through it), clear on Poisson-disk or
+  // voxel-grid samples, was left open because random samples need 6.
+  sampling_evenness_ = detail::lowerQuartileOfPositive (evenness_of);
+  min_hole_size_used_ =
+      min_hole_pitches_ > 0.f ? min_hole_pitches_ : detail::minHoleSizeForEvenness (sampling_evenness_);
+  PCL_DEBUG ("[pcl_holefill::%s::compute] Sampling evenness %.2f (random 0.3, even 0.6-0.85): min hole size %.2g "
+             "pitches%s.\n",
+             getClassName ().c_str (), sampling_evenness_, min_hole_size_used_,
+             min_hole_pitches_ > 0.f ? " (set)" : "");
 }
 
 template <typename PointT> bool
@@ -728,7 +750,7 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
     for (const int j : ids)
       pitch += pitch_of[j];
     pitch /= static_cast<float> (ids.size () + 1);
-    const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * pitch;
+    const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_size_used_ * pitch;
     keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch, rim_points[r].on_thin_part) ? 1 : 0;
     if (keep[r])
       rim_points[r].walk_normal = tracingNormal (local, ids);
@@ -763,7 +785,7 @@ HoleBoundaryEstimation<PointT>::finishLoop (const detail::TracedLoop &traced, co
       4 * coarse.size () + 64);
   measure (loop);
   loop.pitch = pitch / static_cast<float> (traced.members.size ());
-  const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_pitches_ * loop.pitch;
+  const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_size_used_ * loop.pitch;
   loop.is_hole = loop.closed && detail::gapsPointInside (loop_positions, loop_gaps) && loop.diameter >= min_diameter &&
                  (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
   return loop;

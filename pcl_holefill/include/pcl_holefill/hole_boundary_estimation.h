@@ -162,7 +162,8 @@ public:
   getSamplingEvenness () const { return sampling_evenness_; }
 
   /** \brief After compute(): the min hole size applied (pitches): the one
-    * set, or the one chosen from getSamplingEvenness () (detail::minHoleSizeForEvenness). */
+    * set, or the one chosen from getSamplingEvenness () (detail::minHoleSizeForEvenness);
+    * not applied when setMinHoleDiameter () gave one in cloud units. */
   float
   getMinHoleSizeUsed () const { return min_hole_size_used_; }
 

@@ -525,10 +525,14 @@ HoleBoundaryEstimation<PointT>::chooseMinHoleSize (std::vector<float> &evenness_
   sampling_evenness_ = detail::lowerQuartileOfPositive (evenness_of);
   min_hole_size_used_ =
       min_hole_pitches_ > 0.f ? min_hole_pitches_ : detail::minHoleSizeForEvenness (sampling_evenness_);
-  PCL_DEBUG ("[pcl_holefill::%s::compute] Sampling evenness %.2f (random 0.3, even 0.6-0.85): min hole size %.2g "
-             "pitches%s.\n",
-             getClassName ().c_str (), sampling_evenness_, min_hole_size_used_,
-             min_hole_pitches_ > 0.f ? " (set)" : "");
+  if (min_hole_diameter_ > 0.f)
+    PCL_DEBUG ("[pcl_holefill::%s::compute] Sampling evenness %.2f: min hole diameter %g (set).\n",
+               getClassName ().c_str (), sampling_evenness_, min_hole_diameter_);
+  else
+    PCL_DEBUG ("[pcl_holefill::%s::compute] Sampling evenness %.2f (random 0.3, even 0.6-0.85): min hole size %.2g "
+               "pitches%s.\n",
+               getClassName ().c_str (), sampling_evenness_, min_hole_size_used_,
+               min_hole_pitches_ > 0.f ? " (set)" : "");
 }
 
 template <typename PointT> bool

@@ -18,10 +18,10 @@ tangentialNearest (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   for (int j = 0; j < count; ++j)
   {
     const Eigen::Vector3f offset = positions[ids[j]] - point;
+    const float sqr_distance = offset.squaredNorm ();
     const float along = offset.dot (unit_normal);
-    const float across = offset.squaredNorm () - along * along;
-    if (offset.squaredNorm () > 0.f)
-      nearest = std::min (nearest, std::max (across, 0.f));
+    if (sqr_distance > 0.f)
+      nearest = std::min (nearest, std::max (sqr_distance - along * along, 0.f));
   }
   return std::isfinite (nearest) ? std::sqrt (nearest) : 0.f;
 }

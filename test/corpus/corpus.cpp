@@ -657,6 +657,7 @@ runCase (const Case &c)
   }
   const auto covered = coveredBalls (cut, c.holes, output, p);
   o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
+  o.reports_per_ball.assign (c.holes.size (), 0);
   for (const auto &r : filler.getReports ())
   {
     o.min_sigma_n = o.reported ? std::min (o.min_sigma_n, r.sigma_n) : r.sigma_n;
@@ -672,7 +673,6 @@ runCase (const Case &c)
         b = i;
     if (c.holes.empty ())
       continue;
-    o.reports_per_ball.resize (c.holes.size (), 0);
     ++o.reports_per_ball[b];
     o.closed_but_open += r.closed && !covered[b] ? 1 : 0;
     o.open_but_covered += !r.closed && covered[b] ? 1 : 0;

@@ -292,8 +292,9 @@ private:
   mergeRimCandidates (std::vector<ThreadRimPoints> &found);
 
   /** Sets min_hole_size_used_: the min hole size set, or one for the
-    * sampling's evenness (the lower quartile of \a evenness_of, each point's
-    * tangential nearest neighbour over its pitch; reordered). */
+    * sampling's evenness (the lower quartile of \a evenness_of: every
+    * kEvennessStride-th point's tangential nearest neighbour over its pitch,
+    * 0 where not measured; reordered). */
   void
   chooseMinHoleSize (std::vector<float> &evenness_of);
 

@@ -405,7 +405,8 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   std::vector<float> spacing_of, reach_of, evenness_of;
   detail::resizeTouched (spacing_of, n, threads, 0.f);
   detail::resizeTouched (reach_of, n, threads, 0.f);
-  detail::resizeTouched (evenness_of, n, threads, 0.f);
+  // One in kEvennessStride points is measured, each into its own slot.
+  detail::resizeTouched (evenness_of, (n + detail::kEvennessStride - 1) / detail::kEvennessStride, threads, 0.f);
   pitch_of.clear ();
   detail::resizeTouched (pitch_of, n, threads, 0.f);
   auto test_point = [&] (std::size_t i, const int *all_ids, const float *all_d2, int all_count) {
@@ -455,7 +456,7 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
     spacing_of[i] = spacing;
     pitch_of[i] = detail::samplingPitch (farthest, count, gap.angle > angle_threshold_ ? gap.angle : 0.f);
     if (i % detail::kEvennessStride == 0 && pitch_of[i] > 0.f)
-      evenness_of[i] =
+      evenness_of[i / detail::kEvennessStride] =
           detail::tangentialNearest (positions_[i], normals_[i], positions_.data (), ids, count) / pitch_of[i];
     if (!(gap.angle > angle_threshold_))
       return;

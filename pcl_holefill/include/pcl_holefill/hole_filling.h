@@ -314,9 +314,12 @@ private:
 
   /** Has \a sampler keep new points within the hole's closed rim: points
     * evenly along it (at most detail::kRimOutlinePoints), seen along the
-    * mean of its normals (no test where they cancel out). */
+    * mean of its normals (no test where they cancel out); wider limits on a
+    * clean rim with a crease (\a report's noise), where the combination
+    * constraint holds each face. */
   static void
-  encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings);
+  encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,
+                const HoleReport &report);
 
   /** Has \a sampler keep new points below the rim's supporting tangent
     * planes: those of rim points that (almost) every other rim point lies

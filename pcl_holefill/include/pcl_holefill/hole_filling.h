@@ -312,14 +312,20 @@ private:
   static bool
   rimSeesCrease (const Surroundings &surroundings, float reach);
 
+  /** Does the combination constraint hold each face of the rim within its
+    * noise-free tolerance (0.1 h)? It does on a clean rim (\a report's
+    * noise) that shows a crease, when the constraint is on. */
+  bool
+  facesHeldAtCreases (const Surroundings &surroundings, const HoleScale &scale, const HoleReport &report) const;
+
   /** Has \a sampler keep new points within the hole's closed rim: points
     * evenly along it (at most detail::kRimOutlinePoints), seen along the
-    * mean of its normals (no test where they cancel out); wider limits on a
-    * clean rim with a crease (\a report's noise), where the combination
-    * constraint holds each face. */
+    * mean of its normals (no test where they cancel out); with wider limits
+    * where \a faces_held_at_creases (the test is the backstop for fronts
+    * nothing else holds). */
   static void
-  encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings, const HoleScale &scale,
-                const HoleReport &report);
+  encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+                bool faces_held_at_creases);
 
   /** Has \a sampler keep new points below the rim's supporting tangent
     * planes: those of rim points that (almost) every other rim point lies

@@ -11,7 +11,9 @@
  * Poisson on the same input with exact normals (left out with "fast": they
  * take 5 s a case, pcl_holefill 0.05 s). With "strays", the clean cases
  * instead, each with 0.5 % of its points moved 1 to 4 pitches off the surface
- * (corpus::addStrays), exact and estimated normals.
+ * (corpus::addStrays), exact and estimated normals. With "corners", the fin
+ * alone with a hole at each of its 8 corners (corpus::finCornerHoles), every
+ * sampling, noise and normals as the corpus.
  */
 #include "corpus.h"
 #include "reference_methods.h"
@@ -65,13 +67,16 @@ main (int argc, char **argv)
   const std::size_t points = argc > 1 ? std::strtoul (argv[1], nullptr, 10) : 20000;
   const std::string filter = argc > 2 ? argv[2] : "";
   const bool references = !(argc > 3 && std::string (argv[3]) == "fast");
-  const double strays = argc > 4 && std::string (argv[4]) == "strays" ? 0.005 : 0.0;
+  const std::string mode = argc > 4 ? argv[4] : "";
+  const double strays = mode == "strays" ? 0.005 : 0.0;
+  const bool corners = mode == "corners";
   std::printf ("| model | sampling | noise | normals | holes found / cut | false holes | reported closed | closed but open | "
                "open but covered | coverage | density | NN spacing ratio | max error | mean error | added outside | seconds "
                "| MLS coverage | MLS max error | Poisson coverage | Poisson max error |\n");
   std::printf ("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
                "| --- | --- |\n");
-  for (const auto &shape : corpus::models ())
+  const std::vector<corpus::Shape> shapes = corners ? std::vector<corpus::Shape>{corpus::fin ()} : corpus::models ();
+  for (const auto &shape : shapes)
     for (const auto sampling : corpus::allSamplings ())
       for (const double noise : {0.0, 0.001, 0.003, 0.005})
         for (const bool estimated : {false, true})
@@ -85,7 +90,7 @@ main (int argc, char **argv)
           c.noise = noise;
           c.estimated = estimated;
           c.strays = strays;
-          c.holes = corpus::holesOf (shape, points);
+          c.holes = corners ? corpus::finCornerHoles (points) : corpus::holesOf (shape, points);
           c.name = shape.name + "/" + corpus::toString (sampling);
           if (!filter.empty () && c.name.find (filter) == std::string::npos)
             continue;

@@ -515,6 +515,18 @@ holesOf (const Shape &shape, std::size_t points)
   return {};
 }
 
+std::vector<Ball>
+finCornerHoles (std::size_t points)
+{
+  const double radius = 10.0 * pitch (fin (), points);
+  std::vector<Ball> balls;
+  for (const double x : {0.05, 0.95})
+    for (const double y : {0.2, 0.8})
+      for (const double z : {0.48, 0.52})
+        balls.push_back ({V (x, y, z), radius});
+  return balls;
+}
+
 std::vector<Shape>
 models ()
 {

@@ -123,6 +123,12 @@ namespace corpus
 std::vector<Ball>
 holesOf (const Shape &shape, std::size_t points);
 
+/** \brief A ball 20 pitches across at each of the 8 corners of fin () (a
+  * plate 5.2 pitches thick at 20,000 points): each takes the corners of both
+  * faces and the end and side strips between them, one loop round the plate. */
+std::vector<Ball>
+finCornerHoles (std::size_t points);
+
 /** \brief The models of the corpus (fandisk when libcgal-demo is there). */
 std::vector<Shape>
 models ();

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <random>
 #include <sstream>
 #include <tuple>
@@ -399,6 +400,87 @@ TEST (ThinPlateCorner, IsFilledToTheCornerOnEveryFace)
     EXPECT_LE (o.fill.max_error, 0.2 * p) << name.str ();  // reached: 0.01-0.08 pitch
     EXPECT_EQ (o.closed, o.reported) << name.str ();       // reached: all closed
   }
+}
+
+/** fandisk's mesh vertices as the cloud (what a user who has only the mesh
+  * passes), normals the area-weighted mean of the faces around each vertex:
+  * a sampling the corpus's samplers do not make, dense along curved strips
+  * and sparse across flat faces. */
+Cloud
+fandiskVertices (const pcl_holefill::shapes::Shape &mesh)
+{
+  std::map<std::tuple<double, double, double>, std::size_t> index;
+  std::vector<Eigen::Vector3d> positions, normals;
+  for (const auto &face : mesh.faces)
+  {
+    const Eigen::Vector3d n = face.normal ();
+    for (std::size_t k = 1; k + 1 < face.corners.size (); ++k)
+    {
+      const Eigen::Vector3d &a = face.corners[0], &b = face.corners[k], &c = face.corners[k + 1];
+      const Eigen::Vector3d weighted = 0.5 * (b - a).cross (c - a).norm () * n;
+      for (const Eigen::Vector3d *v : {&a, &b, &c})
+      {
+        const auto key = std::make_tuple (v->x (), v->y (), v->z ());
+        const auto [it, inserted] = index.emplace (key, positions.size ());
+        if (inserted)
+        {
+          positions.push_back (*v);
+          normals.push_back (Eigen::Vector3d::Zero ());
+        }
+        normals[it->second] += weighted;
+      }
+    }
+  }
+  Cloud cloud;
+  for (std::size_t i = 0; i < positions.size (); ++i)
+  {
+    pcl::PointNormal q;
+    q.getVector3fMap () = positions[i].cast<float> ();
+    q.getNormalVector3fMap () = normals[i].normalized ().cast<float> ();
+    cloud.push_back (q);
+  }
+  return cloud;
+}
+
+// Holes in fandisk's mesh vertices, on a face next to a wall that meets
+// two faces (a step beside a floor, the foot of its thin plate). The wall's
+// points were labelled concave by the face in front of them and rejected
+// every sample of the floor behind them (section 4.4's constraint): 56-92 %
+// covered, one flap 3.8 spacings off. A point whose plane the sample's
+// front vertex is past already, and whose neighbours on the vertex's side
+// label it otherwise, no longer rejects it.
+TEST (MeshVertices, FaceBesideAWallIsFilled)
+{
+  pcl_holefill::shapes::Shape mesh;
+  std::string error;
+  // The test command installs libcgal-demo: without fandisk this case is not run, and says so.
+  ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
+  const Cloud cloud = fandiskVertices (mesh);
+  const double h = pcl_holefill::shapes::meanSpacing (cloud);
+  // Centre (unit-cube coordinates) and radius in spacings.
+  const std::vector<std::pair<Eigen::Vector3d, double>> balls = {
+      {{0.5401, 0.1062, 0.7062}, 6.16}, {{0.5081, 0.5111, 0.7495}, 5.05}, {{0.6138, 0.2721, 0.5172}, 4.32},
+      {{0.4212, 0.0784, 0.9500}, 6.83}, {{0.4133, 0.0496, 0.7866}, 5.68}, {{0.2569, 0.3986, 0.9360}, 4.42}};
+  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
+  double coverage = 0.0;  // mean over the balls
+  for (const auto &[centre, radius] : balls)
+  {
+    const std::vector<pcl_holefill::shapes::Ball> cut_balls = {{centre, radius * h}};
+    const auto cut = pcl_holefill::shapes::cutHoles (cloud, cut_balls);
+    pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+    filler.setInputCloud (cut.kept.makeShared ());
+    Cloud output;
+    filler.filter (output);
+    const auto quality = pcl_holefill::shapes::evaluateFill (mesh, cut, cut_balls, output, h);
+    std::ostringstream name;
+    name << centre.transpose () << ", " << radius << " spacings";
+    EXPECT_EQ (filler.getReports ().size (), 1u) << name.str ();
+    EXPECT_TRUE (quality.kept_unchanged) << name.str ();
+    EXPECT_GE (quality.coverage, 0.8) << name.str ();      // reached: 83.6-100 % (before: 56.4-92.0 %)
+    EXPECT_LE (quality.max_error, 2.0 * h) << name.str ();  // reached: 0-1.55 h (before: up to 3.76 h)
+    coverage += quality.coverage / static_cast<double> (balls.size ());
+  }
+  EXPECT_GE (coverage, 0.92);  // reached: 94.3 % (before: 79.3 %)
 }
 
 class ThinSheet : public testing::TestWithParam<std::tuple<double, int>>

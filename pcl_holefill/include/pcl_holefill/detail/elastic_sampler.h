@@ -142,6 +142,21 @@ public:
   float
   getConstraintRadius () const { return constraint_radius_; }
 
+  /** \brief Lets a sample past a reference point's tangent plane when the
+    * plane bounds another face than the one the sample grew on (beyond the
+    * paper; default off): its front vertex lies past the plane already, and
+    * the point's neighbours on the vertex's side label it otherwise than
+    * all its neighbours do. Where a wall meets two faces (a step beside a
+    * floor, the foot of a thin plate), the wall's points see one face below
+    * their tangent plane and the other above: whichever outweighs labels
+    * them, and a floor behind a wall labelled concave had every sample
+    * rejected. For clean rims: half a neighbourhood's mean height carries
+    * twice the noise's variance. */
+  void
+  setSignTowardsFront (bool enabled) { sign_towards_front_ = enabled; }
+  bool
+  getSignTowardsFront () const { return sign_towards_front_; }
+
   /** \brief Switches the combination constraint (default on). */
   void
   setCombinationConstraint (bool enabled) { combination_constraint_ = enabled; }
@@ -329,13 +344,31 @@ private:
   static void
   count (Verdict verdict, ContractionStats &stats);
 
-  /** Optimises a candidate and runs every check but the repulsion. */
+  /** Optimises a candidate grown from \a origin (a front vertex, or a point
+    * of the control curve) and runs every check but the repulsion. */
   Verdict
-  place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal) const;
+  place (Eigen::Vector3f &position, const Eigen::Vector3f &origin, const Eigen::Vector3f &reference_normal,
+         Eigen::Vector3f &normal) const;
 
   /** -1 concave, 0 flat, +1 convex; cached per surface point. */
   int
   curvatureSign (int index) const;
+
+  /** The same from the neighbours on the side of \a towards only (those
+    * with a positive component along \a towards - the point); not cached. */
+  int
+  curvatureSignTowards (int index, const Eigen::Vector3f &towards) const;
+
+  /** setSignTowardsFront's test: point \a index, labelled \a sign, would
+    * reject a sample grown from \a origin; does its plane bound another face? */
+  bool
+  boundsAnotherFace (int index, const Eigen::Vector3f &origin, int sign) const;
+
+  /** Weighted mean height of the surface points within the constraint's
+    * reach of point \a index over its tangent plane, of all of them (\a
+    * towards null) or of those on the side of *towards; as a sign. */
+  int
+  signOfMeanHeight (int index, const Eigen::Vector3f *towards) const;
 
   /** The combination constraint of section 4.4: does a sample at \a position
     * lie past the tangent plane of a convex (below it) or concave (above it)
@@ -344,7 +377,8 @@ private:
     * the oriented points within r of \a position (optimisePosition's; the
     * constraint's reach is at most r, and an unoriented point bounds nothing). */
   bool
-  breaksCombinationConstraint (const Eigen::Vector3f &position, const Neighbourhood &around) const;
+  breaksCombinationConstraint (const Eigen::Vector3f &position, const Eigen::Vector3f &origin,
+                               const Neighbourhood &around) const;
   /** Above one of the rim planes of setRimPlanes? */
   bool
   aboveRimPlanes (const Eigen::Vector3f &position) const;
@@ -366,6 +400,7 @@ private:
   Eigen::Vector3f constraint_facing_ = Eigen::Vector3f::Zero ();
   int threads_ = 1;
   bool combination_constraint_ = true;
+  bool sign_towards_front_ = false;
   Eigen::Vector3f bound_centre_ = Eigen::Vector3f::Zero ();
   float bound_radius_ = 0.f;
   std::vector<Eigen::Vector3f> rim_;

@@ -45,6 +45,13 @@ constexpr int kTangentStencil = 2;
 // cos 45 degrees: a reference point's normal within this of the constraint's
 // facing direction (setConstraintFacing) faces the same way.
 constexpr float kFacingCosine = 0.7071f;
+// setSignTowardsFront: a front vertex this far (in d_eq) past a reference
+// point's tangent plane grew on a face beyond that plane, not towards it.
+// Nearer, the plane may be the one the front approaches: at the flat rim of
+// a thin bowl, the inner wall's front rose 3.9 pitches above the rim when
+// fronts 0.16-0.25 pitch past the wall's planes were let by (d_eq / 4 is
+// 0.28 pitch: a margin this narrow, measured, not a proven bound).
+constexpr float kFrontPastPlane = 0.25f;
 // optimisePosition gathers the input within (1 + this) r once for its three
 // estimates, again only when eq. (8) moved the candidate farther: at most
 // 0.001 r on a clean sphere; on a cube at 0.5 % noise, 5 moves in 3,000
@@ -129,27 +136,54 @@ ElasticSampler<PointT>::curvatureSign (int index) const
   const signed char known = __atomic_load_n (cached, __ATOMIC_RELAXED);
   if (known != 2)
     return known;
+  const auto sign = static_cast<signed char> (signOfMeanHeight (index, nullptr));
+  __atomic_store_n (cached, sign, __ATOMIC_RELAXED);
+  return sign;
+}
+
+template <typename PointT> int
+ElasticSampler<PointT>::curvatureSignTowards (int index, const Eigen::Vector3f &towards) const
+{
+  return signOfMeanHeight (index, &towards);
+}
+
+template <typename PointT> int
+ElasticSampler<PointT>::signOfMeanHeight (int index, const Eigen::Vector3f *towards) const
+{
   const PointT &q = (*input_)[index];
   const Eigen::Vector3f centre = q.getVector3fMap ();
   const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
+  const Eigen::Vector3f side = towards ? Eigen::Vector3f (*towards - centre) : Eigen::Vector3f::Zero ();
   Neighbourhood neighbours;
   propagation_.gatherNeighbourhood (centre, neighbours, constraintReach ());
   float total = 0.f, offset = 0.f;
   for (std::size_t i = 0; i < neighbours.size (); ++i)
   {
     const Eigen::Vector3f d = neighbours.positions[i] - centre;
+    if (towards && !(d.dot (side) > 0.f))
+      continue;
     const float w = propagation_.kernel ().spatial (d.squaredNorm ());
     offset += w * d.dot (normal);
     total += w;
   }
   const float mean = total > 0.f ? offset / total : 0.f;
-  const signed char sign = mean < -sign_tolerance_ ? 1 : (mean > sign_tolerance_ ? -1 : 0);
-  __atomic_store_n (cached, sign, __ATOMIC_RELAXED);
-  return sign;
+  return mean < -sign_tolerance_ ? 1 : (mean > sign_tolerance_ ? -1 : 0);
 }
 
 template <typename PointT> bool
-ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &position,
+ElasticSampler<PointT>::boundsAnotherFace (int index, const Eigen::Vector3f &origin, int sign) const
+{
+  // Only asked of a point that would reject (rare): its neighbourhood is
+  // gathered again, not cached.
+  const PointT &q = (*input_)[index];
+  const float origin_height = (origin - q.getVector3fMap ()).dot (q.getNormalVector3fMap ().normalized ());
+  const float margin = kFrontPastPlane * equilibrium_distance_;
+  const bool origin_past = sign > 0 ? origin_height > margin : origin_height < -margin;
+  return origin_past && curvatureSignTowards (index, origin) != sign;
+}
+
+template <typename PointT> bool
+ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &position, const Eigen::Vector3f &origin,
                                                      const Neighbourhood &around) const
 {
   const float reach = constraintReach ();
@@ -171,7 +205,8 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
       continue;
     const float height = (position - q).dot (normal);
     const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distance);
-    if ((sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance))
+    const bool past = (sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance);
+    if (past && !(sign_towards_front_ && boundsAnotherFace (around.indices[k], origin, sign)))
       return true;
   }
   return false;
@@ -207,8 +242,8 @@ ElasticSampler<PointT>::surfacePointsWithin (const Eigen::Vector3f &position, co
 }
 
 template <typename PointT> typename ElasticSampler<PointT>::Verdict
-ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &reference_normal,
-                               Eigen::Vector3f &normal) const
+ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &origin,
+                               const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal) const
 {
   Neighbourhood around;
   if (!optimisePosition (position, reference_normal, normal, around))
@@ -222,7 +257,7 @@ ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f 
   if (!rim_.empty () && rimGapAround (position, rim_axis_, rim_) > max_rim_gap_along_axis_ &&
       rimGapAround (position, normal, rim_) > max_rim_gap_along_normal_)
     return Verdict::kBeyondRim;
-  if (combination_constraint_ && breaksCombinationConstraint (position, around))
+  if (combination_constraint_ && breaksCombinationConstraint (position, origin, around))
     return Verdict::kOvershoot;
   if (combination_constraint_ && std::any_of (crease_chords_.begin (), crease_chords_.end (),
                    [&] (const CreaseChord &c) { return c.crossedBy (position, normal, crease_tolerance_); }))
@@ -316,7 +351,7 @@ ElasticSampler<PointT>::controlPoints (const FrontChain &chain, const std::vecto
     }
     FrontVertex &c = candidates[i];
     c = {chain.vertices[i].position + d_eq * directions[i], chain.vertices[i].normal};
-    verdicts[i] = place (c.position, chain.vertices[i].normal, c.normal);
+    verdicts[i] = place (c.position, chain.vertices[i].position, chain.vertices[i].normal, c.normal);
     std::vector<PointGrid::Neighbour> close;
     if (verdicts[i] == Verdict::kKept)
     {
@@ -474,7 +509,8 @@ ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, b
     std::vector<PointGrid::Neighbour> nearest;
     pass.former_grid.nearestK (samples[k].position, 1, nearest);
     const Eigen::Vector3f reference = nearest.empty () ? fallback[k] : pass.former_vertices[nearest[0].id]->normal;
-    placed[k] = place (samples[k].position, reference, samples[k].normal);
+    const Eigen::Vector3f on_curve = samples[k].position;
+    placed[k] = place (samples[k].position, on_curve, reference, samples[k].normal);
   }
   // ... then kept in order along C, never twice on one spot, the new
   // boundary cut where a discarded sample leaves a gap.

@@ -354,19 +354,17 @@ private:
   int
   curvatureSign (int index) const;
 
-  /** The same from the neighbours on the side of \a towards only (those
-    * with a positive component along \a towards - the point); not cached. */
-  int
-  curvatureSignTowards (int index, const Eigen::Vector3f &towards) const;
-
-  /** setSignTowardsFront's test: point \a index, labelled \a sign, would
-    * reject a sample grown from \a origin; does its plane bound another face? */
+  /** setSignTowardsFront's test: point \a index (at \a q, unit \a normal),
+    * labelled \a sign, would reject a sample grown from \a origin; does its
+    * plane bound another face? */
   bool
-  boundsAnotherFace (int index, const Eigen::Vector3f &origin, int sign) const;
+  boundsAnotherFace (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
+                     const Eigen::Vector3f &origin, int sign) const;
 
   /** Weighted mean height of the surface points within the constraint's
     * reach of point \a index over its tangent plane, of all of them (\a
-    * towards null) or of those on the side of *towards; as a sign. */
+    * towards null) or of those on the side of *towards (a positive component
+    * along *towards minus the point; not cached), as a sign like curvatureSign's. */
   int
   signOfMeanHeight (int index, const Eigen::Vector3f *towards) const;
 

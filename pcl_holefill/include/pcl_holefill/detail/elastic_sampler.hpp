@@ -142,12 +142,6 @@ ElasticSampler<PointT>::curvatureSign (int index) const
 }
 
 template <typename PointT> int
-ElasticSampler<PointT>::curvatureSignTowards (int index, const Eigen::Vector3f &towards) const
-{
-  return signOfMeanHeight (index, &towards);
-}
-
-template <typename PointT> int
 ElasticSampler<PointT>::signOfMeanHeight (int index, const Eigen::Vector3f *towards) const
 {
   const PointT &q = (*input_)[index];
@@ -171,15 +165,15 @@ ElasticSampler<PointT>::signOfMeanHeight (int index, const Eigen::Vector3f *towa
 }
 
 template <typename PointT> bool
-ElasticSampler<PointT>::boundsAnotherFace (int index, const Eigen::Vector3f &origin, int sign) const
+ElasticSampler<PointT>::boundsAnotherFace (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
+                                           const Eigen::Vector3f &origin, int sign) const
 {
-  // Only asked of a point that would reject (rare): its neighbourhood is
-  // gathered again, not cached.
-  const PointT &q = (*input_)[index];
-  const float origin_height = (origin - q.getVector3fMap ()).dot (q.getNormalVector3fMap ().normalized ());
+  const float origin_height = (origin - q).dot (normal);
   const float margin = kFrontPastPlane * equilibrium_distance_;
   const bool origin_past = sign > 0 ? origin_height > margin : origin_height < -margin;
-  return origin_past && curvatureSignTowards (index, origin) != sign;
+  // Only asked of a point that would reject (rare): its neighbourhood is
+  // gathered again, not cached.
+  return origin_past && signOfMeanHeight (index, &origin) != sign;
 }
 
 template <typename PointT> bool
@@ -206,7 +200,7 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
     const float height = (position - q).dot (normal);
     const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distance);
     const bool past = (sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance);
-    if (past && !(sign_towards_front_ && boundsAnotherFace (around.indices[k], origin, sign)))
+    if (past && !(sign_towards_front_ && boundsAnotherFace (around.indices[k], q, normal, origin, sign)))
       return true;
   }
   return false;
@@ -509,7 +503,7 @@ ElasticSampler<PointT>::sampleAlongCurve (const std::vector<FrontVertex> &run, b
     std::vector<PointGrid::Neighbour> nearest;
     pass.former_grid.nearestK (samples[k].position, 1, nearest);
     const Eigen::Vector3f reference = nearest.empty () ? fallback[k] : pass.former_vertices[nearest[0].id]->normal;
-    const Eigen::Vector3f on_curve = samples[k].position;
+    const Eigen::Vector3f on_curve = samples[k].position;  // a copy: place moves the sample
     placed[k] = place (samples[k].position, on_curve, reference, samples[k].normal);
   }
   // ... then kept in order along C, never twice on one spot, the new

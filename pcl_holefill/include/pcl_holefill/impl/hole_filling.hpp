@@ -527,6 +527,14 @@ constraintTolerance (float spacing, float noise)
   return std::max (kToleranceInSpacings * spacing, kToleranceInNoiseSigmas * noise);
 }
 
+/** Is a rim of mean spacing \a spacing and noise \a noise clean: its noise
+  * under what the constraint's noise-free tolerance (0.1 h) allows? */
+inline bool
+noiseFree (float spacing, float noise)
+{
+  return constraintTolerance (spacing, noise) <= kToleranceInSpacings * spacing;
+}
+
 /** Every how many rim points the outline takes one (at most kRimOutlinePoints along a rim of \a n). */
 inline std::size_t
 outlineStep (std::size_t n)
@@ -1169,8 +1177,7 @@ HoleFilling<PointT>::facesHeldAtCreases (const Surroundings &surroundings, const
   // RimStatistics::crease_share counts: taken from that share instead, one
   // of the 48 fin corners (random, 20 pitches) lost its widened limits and
   // 18 points of coverage.
-  return combination_constraint_ &&
-         detail::constraintTolerance (scale.spacing, report.noise) <= detail::kToleranceInSpacings * scale.spacing &&
+  return combination_constraint_ && detail::noiseFree (scale.spacing, report.noise) &&
          rimSeesCrease (surroundings, detail::kNoiseReachInSpacings * scale.spacing);
 }
 
@@ -1312,7 +1319,7 @@ HoleFilling<PointT>::setUpSampler (detail::ElasticSampler<PointT> &sampler, cons
   // Clean rims only: at 0.3 / 0.5 % noise the labels of half neighbourhoods
   // raised the corpus's sums of max errors by 5-6 % (doc/parameters.md, "A
   // wall between two faces").
-  sampler.setSignTowardsFront (detail::constraintTolerance (h, report.noise) <= detail::kToleranceInSpacings * h);
+  sampler.setSignTowardsFront (detail::noiseFree (h, report.noise));
   sampler.setConstraintRadius (scale.constraint_radius);
   sampler.setBoundingBall (scale.centre, scale.bound);
 }

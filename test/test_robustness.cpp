@@ -414,6 +414,8 @@ fandiskVertices (const pcl_holefill::shapes::Shape &mesh)
   for (const auto &face : mesh.faces)
   {
     const Eigen::Vector3d n = face.normal ();
+    if (!n.allFinite ())
+      continue;  // a degenerate face: no direction to add to its corners
     for (std::size_t k = 1; k + 1 < face.corners.size (); ++k)
     {
       const Eigen::Vector3d &a = face.corners[0], &b = face.corners[k], &c = face.corners[k + 1];

@@ -168,9 +168,9 @@ template <typename PointT> bool
 ElasticSampler<PointT>::boundsAnotherFace (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
                                            const Eigen::Vector3f &origin, int sign) const
 {
-  const float origin_height = (origin - q).dot (normal);
-  const float margin = kFrontPastPlane * equilibrium_distance_;
-  const bool origin_past = sign > 0 ? origin_height > margin : origin_height < -margin;
+  // Heights are taken on the side the label bounds (sign +-1), as in breaksCombinationConstraint.
+  const bool origin_past =
+      static_cast<float> (sign) * (origin - q).dot (normal) > kFrontPastPlane * equilibrium_distance_;
   // Only asked of a point that would reject (rare): its neighbourhood is
   // gathered again, not cached.
   return origin_past && signOfMeanHeight (index, &origin) != sign;
@@ -197,9 +197,9 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
     const int sign = curvatureSign (around.indices[k]);
     if (sign == 0)
       continue;
-    const float height = (position - q).dot (normal);
-    const float tolerance = tolerance_ + slope_ * std::sqrt (sqr_distance);
-    const bool past = (sign > 0 && height > tolerance) || (sign < 0 && height < -tolerance);
+    // Past the plane on the side the label bounds: above a convex point's, below a concave one's.
+    const float past_by = static_cast<float> (sign) * (position - q).dot (normal);
+    const bool past = past_by > tolerance_ + slope_ * std::sqrt (sqr_distance);
     if (past && !(sign_towards_front_ && boundsAnotherFace (around.indices[k], q, normal, origin, sign)))
       return true;
   }

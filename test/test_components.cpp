@@ -346,6 +346,29 @@ TEST (CreaseNormals, ExactAndSmoothNormalsAreLeftAlone)
     EXPECT_FALSE (refitAt (on_sphere, sphere_normals, i, 0.03f, 0.0005f, n)) << i;
 }
 
+TEST (CreaseNormals, ANormalOnNoNeighboursPlaneIsRefittedToAFace)
+{
+  // A point on the edge of two faces (z = 0 and x = 0), its PCA normal
+  // 55 degrees from both, as a hole leaves it at a sparse spot of random
+  // samples: two neighbours on each face, none on the point's own plane.
+  const float reach = 0.03f, tolerance = 0.0005f;
+  const std::vector<Eigen::Vector3f> points = {
+      {0.f, 0.f, 0.f}, {0.010f, 0.004f, 0.f}, {0.013f, -0.007f, 0.f}, {0.f, 0.006f, 0.011f}, {0.f, -0.009f, 0.012f}};
+  const std::vector<Eigen::Vector3f> normals = {Eigen::Vector3f (0.58f, -0.55f, -0.6f).normalized (),
+                                                -Eigen::Vector3f::UnitZ (), -Eigen::Vector3f::UnitZ (),
+                                                Eigen::Vector3f::UnitX (), Eigen::Vector3f::UnitX ()};
+  Eigen::Vector3f n;
+  ASSERT_TRUE (refitAt (points, normals, 0, reach, tolerance, n));
+  // Either face, nothing in between (before: kept, and the fill grew a
+  // flat sheet along it into the part).
+  EXPECT_LT (std::min (degrees (n, -Eigen::Vector3f::UnitZ ()), degrees (n, Eigen::Vector3f::UnitX ())), 0.5f);
+  // One neighbour on the point's plane supports it: 3 more are needed then.
+  std::vector<Eigen::Vector3f> supported = points, supported_normals = normals;
+  supported.push_back (Eigen::Vector3f (0.55f, 0.58f, 0.f).normalized () * 0.01f);
+  supported_normals.push_back (normals[0]);
+  EXPECT_FALSE (refitAt (supported, supported_normals, 0, reach, tolerance, n));
+}
+
 namespace
 {
 const Eigen::Vector3f kSphereCentre (0.f, 0.f, -0.5f);

@@ -18,6 +18,16 @@ namespace
 // A refit needs the best plane to hold this many neighbours more than the
 // point's own plane ...
 constexpr int kMinGain = 3;
+// ... or this many when the own plane holds the point alone and the best
+// one lies a crease away: a normal square to no neighbour, between two
+// faces, belongs to neither. Where a hole left a point at a convex edge 15
+// neighbours within 6 h, its PCA normal pointed 55 degrees from both
+// faces, 2 of them lay on a face's plane, and with a sharp sigma_n the fill
+// took that normal for a face of its own: a flat sheet grew from the edge
+// 0.11 (12 h) into a bored cube. (A lone normal on a curved face, tilted by
+// its one-sided neighbourhood, is a few degrees from the best plane's, and
+// keeps the stricter rule.)
+constexpr int kMinGainOverLoneNormal = 2;
 // ... and this many times as many: a plane that wins by a few points on a
 // curved patch is a tilt the curvature allows, not a crease.
 constexpr float kMinGainRatio = 1.2f;
@@ -62,7 +72,9 @@ refitCreaseNormal (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
       best_normal = unit_normals[k];
     }
   }
-  if (best < own + kMinGain || static_cast<float> (best) < kMinGainRatio * static_cast<float> (own))
+  const bool lone_between_faces = own <= 1 && (best_normal - unit_normal).norm () > kCreaseNormalDifference;
+  const int gain = lone_between_faces ? kMinGainOverLoneNormal : kMinGain;
+  if (best < own + gain || static_cast<float> (best) < kMinGainRatio * static_cast<float> (own))
     return false;
   // PCA over the best plane's neighbours: the face's normal, not the
   // neighbour's estimate of it.

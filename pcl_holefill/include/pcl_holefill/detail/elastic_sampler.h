@@ -361,6 +361,17 @@ private:
   boundsAnotherFace (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
                      const Eigen::Vector3f &origin, int sign) const;
 
+  /** How steeply the input points of convex point \a index's own face
+    * (normals within kCreaseNormalDifference of its unit \a normal, within
+    * the constraint's reach, on the side of \a towards) rise above its
+    * tangent plane at \a q, beyond the tolerance and beyond the height of
+    * the point under each neighbour's own plane: the largest (height -
+    * that - tolerance) / distance, at least 0. A tilted normal gives a
+    * slope; a face that curves up for real gives none. */
+  float
+  ownFaceSlope (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
+                const Eigen::Vector3f &towards) const;
+
   /** Weighted mean height of the surface points within the constraint's
     * reach of point \a index over its tangent plane, of all of them (\a
     * towards null) or of those on the side of *towards (a positive component
@@ -371,7 +382,8 @@ private:
   /** The combination constraint of section 4.4: does a sample at \a position
     * lie past the tangent plane of a convex (below it) or concave (above it)
     * reference point within the constraint's reach, by more than the
-    * tolerance? Such a sample overshoots an edge the rim shows. \a around:
+    * tolerance? Such a sample overshoots an edge the rim shows. A convex
+    * point bounds only beyond its own face's rise (ownFaceSlope). \a around:
     * the oriented points within r of \a position (optimisePosition's; the
     * constraint's reach is at most r, and an unoriented point bounds nothing). */
   bool
@@ -393,6 +405,7 @@ private:
   float equilibrium_distance_ = 0.f;
   float tolerance_ = 0.f;
   float slope_ = 0.f;
+  std::size_t points_before_front_ = 0;  //!< the cloud's points when set: input (and earlier holes' fill)
   float sign_tolerance_ = 0.f;
   float constraint_radius_ = 0.f;
   Eigen::Vector3f constraint_facing_ = Eigen::Vector3f::Zero ();

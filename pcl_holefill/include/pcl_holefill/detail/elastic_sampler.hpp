@@ -7,6 +7,7 @@
 #include <pcl_holefill/detail/boundary_point_test.h>
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/normal_propagation.hpp>
+#include <pcl_holefill/detail/normal_refit.h>
 
 #include <pcl/console/print.h>
 
@@ -78,6 +79,7 @@ template <typename PointT> void
 ElasticSampler<PointT>::setInputCloud (const PointCloudConstPtr &cloud)
 {
   input_ = cloud;
+  points_before_front_ = cloud->size ();
   propagation_.setInputCloud (cloud);
   curvature_signs_.clear ();
 }
@@ -176,6 +178,34 @@ ElasticSampler<PointT>::boundsAnotherFace (int index, const Eigen::Vector3f &q, 
   return origin_past && signOfMeanHeight (index, &origin) != sign;
 }
 
+template <typename PointT> float
+ElasticSampler<PointT>::ownFaceSlope (int index, const Eigen::Vector3f &q, const Eigen::Vector3f &normal,
+                                      const Eigen::Vector3f &towards) const
+{
+  // Only asked of a point that would reject (rare): not cached.
+  Neighbourhood neighbours;
+  propagation_.gatherNeighbourhood (q, neighbours, constraintReach ());
+  const Eigen::Vector3f side = towards - q;
+  float slope = 0.f;
+  for (std::size_t i = 0; i < neighbours.size (); ++i)
+  {
+    const int j = neighbours.indices[i];
+    const Eigen::Vector3f d = neighbours.positions[i] - q;
+    // Not the point itself, nor the fill (it must not widen its own bound),
+    // nor another face, nor the face behind the point.
+    if (j == index || j >= static_cast<int> (points_before_front_) ||
+        !((neighbours.normals[i] - normal).norm () < kCreaseNormalDifference) || !(d.dot (side) > 0.f))
+      continue;
+    // Rise that the neighbour's own plane does not share: on a face that
+    // curves up for real (a bore's concave wall) the point lies as far above
+    // the neighbour's plane as the neighbour above its own, and its plane
+    // bounds; a tilted normal has the point on its neighbours' planes.
+    const float mutual = std::max (0.f, -d.dot (neighbours.normals[i]));
+    slope = std::max (slope, (d.dot (normal) - mutual - tolerance_) / d.norm ());
+  }
+  return slope;
+}
+
 template <typename PointT> bool
 ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &position, const Eigen::Vector3f &origin,
                                                      const Neighbourhood &around) const
@@ -199,8 +229,19 @@ ElasticSampler<PointT>::breaksCombinationConstraint (const Eigen::Vector3f &posi
       continue;
     // Past the plane on the side the label bounds: above a convex point's, below a concave one's.
     const float past_by = static_cast<float> (sign) * (position - q).dot (normal);
-    const bool past = past_by > tolerance_ + slope_ * std::sqrt (sqr_distance);
-    if (past && !(sign_towards_front_ && boundsAnotherFace (around.indices[k], q, normal, origin, sign)))
+    const float distance = std::sqrt (sqr_distance);
+    if (!(past_by > tolerance_ + slope_ * distance))
+      continue;
+    // A convex point whose own face rises past its tangent plane towards
+    // the sample has a tilted normal (vertex normals averaged over an
+    // irregular mesh's long triangles: a few degrees off on a curved strip),
+    // and bounds the sample only beyond that rise. Not a concave one: a
+    // point at the top of a wall that curves concavely is labelled so even
+    // at a convex crease, its face bends away below its plane for real, and
+    // the wall's front ran up past the crease (a thin bowl's flat rim).
+    if (sign > 0 && past_by <= tolerance_ + ownFaceSlope (around.indices[k], q, normal, position) * distance)
+      continue;
+    if (!(sign_towards_front_ && boundsAnotherFace (around.indices[k], q, normal, origin, sign)))
       return true;
   }
   return false;

@@ -31,8 +31,9 @@ constexpr float kCreaseNormalDifference = 0.5f;
   * of it. On one face of a crease, a normal of that face, taken from a
   * neighbour farther from the edge, has every point of the face on its plane;
   * a blended normal has only those close to the point. When the best plane
-  * holds clearly more neighbours than the point's own (3 more, and 1.2
-  * times as many), the normal is refitted by PCA to that plane's neighbours
+  * holds clearly more neighbours than the point's own (3 more, or 2 when
+  * the point lies alone on its own plane and the best is a crease away,
+  * and 1.2 times as many), the normal is refitted by PCA to that plane's neighbours
   * and returned in \a refitted, on the side of the old one. Exact normals,
   * and estimated normals away from creases, already hold the most
   * neighbours: false, nothing changes. Only near a crease (a neighbour's

@@ -9,6 +9,7 @@
 #include <pcl_holefill/detail/elastic_sampler.h>
 #include <pcl_holefill/detail/local_surface.h>
 #include <pcl_holefill/detail/normal_propagation.h>
+#include <pcl_holefill/detail/rim_side_planes.h>
 #include <pcl_holefill/detail/stray_points.h>
 #include "shapes.h"
 #include <pcl_holefill/voxel_hash_search.h>
@@ -344,6 +345,51 @@ TEST (CreaseNormals, ExactAndSmoothNormalsAreLeftAlone)
   ASSERT_GT (on_sphere.size (), 50u);
   for (std::size_t i = 0; i < on_sphere.size (); ++i)
     EXPECT_FALSE (refitAt (on_sphere, sphere_normals, i, 0.03f, 0.0005f, n)) << i;
+}
+
+TEST (RimSidePlanes, ARimAlongATakenFaceGivesItsPlane)
+{
+  // fandisk's rim of ball 5 in miniature: a loop whose stretch in the plane
+  // x = 0 bends (down along z, then along y) with normals along the plane
+  // (+y, the face beside it), the rest of the loop at x < 0.
+  std::vector<Eigen::Vector3f> positions, normals;
+  for (int i = 0; i <= 20; ++i)  // in the plane: (0, 0, 1 -> 0)
+  {
+    positions.emplace_back (0.f, 0.f, 1.f - 0.05f * static_cast<float> (i));
+    normals.push_back (Eigen::Vector3f::UnitY ());
+  }
+  for (int i = 1; i <= 8; ++i)  // in the plane: (0, 0 -> -0.4, 0)
+  {
+    positions.emplace_back (0.f, -0.05f * static_cast<float> (i), 0.f);
+    normals.push_back (Eigen::Vector3f::UnitY ());
+  }
+  for (int i = 1; i <= 30; ++i)  // back through x < 0 to the start
+  {
+    const float t = static_cast<float> (i) / 31.f;
+    const Eigen::Vector3f from (0.f, -0.4f, 0.f), to (0.f, 0.f, 1.f);
+    positions.push_back (from + t * (to - from) - Eigen::Vector3f (0.5f * std::sin (static_cast<float> (M_PI) * t), 0.f, 0.f));
+    normals.push_back (Eigen::Vector3f (0.f, -1.f, 0.f));
+  }
+  const auto planes = detail::findRimSidePlanes (positions, normals, 0.001f);
+  ASSERT_FALSE (planes.empty ());
+  for (const auto &plane : planes)
+  {
+    EXPECT_GT (plane.normal.x (), 0.999f);  // x <= 0 bounds the fill
+    EXPECT_NEAR (plane.point.x (), 0.f, 1e-5f);
+    EXPECT_GE (plane.on.size (), 29u);
+  }
+  // Normals across the plane (a flat hole, a cap): no side plane.
+  std::vector<Eigen::Vector3f> across (normals.size (), Eigen::Vector3f::UnitX ());
+  EXPECT_TRUE (detail::findRimSidePlanes (positions, across, 0.001f).empty ());
+  // A loop all in one plane (around a rod): none either.
+  std::vector<Eigen::Vector3f> circle, radial;
+  for (int i = 0; i < 60; ++i)
+  {
+    const float a = 2.f * static_cast<float> (M_PI) * static_cast<float> (i) / 60.f;
+    circle.emplace_back (std::cos (a), std::sin (a), 0.f);
+    radial.emplace_back (std::cos (a), std::sin (a), 0.f);
+  }
+  EXPECT_TRUE (detail::findRimSidePlanes (circle, radial, 0.001f).empty ());
 }
 
 TEST (CreaseNormals, ANormalOnNoNeighboursPlaneIsRefittedToAFace)

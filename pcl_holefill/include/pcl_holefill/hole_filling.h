@@ -331,8 +331,17 @@ private:
     * planes: those of rim points that (almost) every other rim point lies
     * below (ElasticSampler::setRimPlanes). */
   static void
-  keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
+  keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler, Surroundings &surroundings,
                       const HoleScale &scale, const HoleReport &report);
+
+  /** Adds to the rim planes (\a points, unit \a normals) the planes of
+    * faces the hole took that the rim shows only by running along them
+    * (detail::findRimSidePlanes, within \a tolerance), and gives the rim
+    * points on such a plane its normal in the fill's copy where theirs are
+    * the face beside's. */
+  static void
+  holdAtRimSidePlanes (Surroundings &surroundings, float tolerance, std::vector<Eigen::Vector3f> &points,
+                       std::vector<Eigen::Vector3f> &normals);
 
   /** The creases that cross the hole, from the faces its rim passes
     * through: each face's front stays on its side of the crease

@@ -229,6 +229,7 @@ fitPlane (const Eigen::Vector3f *positions, int count)
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver (scatter);
   plane.normal = solver.eigenvectors ().col (0);
   plane.residual = std::max (solver.eigenvalues () (0), 0.f) / static_cast<float> (count);
+  plane.spread = std::max (solver.eigenvalues () (1), 0.f) / static_cast<float> (count);
   return plane;
 }
 

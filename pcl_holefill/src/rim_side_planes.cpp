@@ -2,11 +2,11 @@
  * pcl_holefill: shape controllable hole filling for oriented point clouds.
  * SPDX-License-Identifier: BSD-3-Clause
  */
+#include <pcl_holefill/detail/normal_refit.h>
 #include <pcl_holefill/detail/rim_side_planes.h>
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace pcl_holefill::detail
@@ -37,7 +37,8 @@ windowExtent (const std::vector<Eigen::Vector3f> &positions, int centre)
 {
   const auto n = static_cast<int> (positions.size ());
   const Eigen::Vector3f &c = positions[centre];
-  return std::max ((positions[(centre - kSideWindow + n) % n] - c).norm (), (positions[(centre + kSideWindow) % n] - c).norm ());
+  return std::max ((positions[(centre - kSideWindow + n) % n] - c).norm (),
+                   (positions[(centre + kSideWindow) % n] - c).norm ());
 }
 
 /** The plane of the window of rim points around \a centre, if they lie in
@@ -47,24 +48,16 @@ windowPlane (const std::vector<Eigen::Vector3f> &positions, int centre, float to
              Eigen::Vector3f &normal)
 {
   const auto n = static_cast<int> (positions.size ());
-  point = Eigen::Vector3f::Zero ();
+  std::array<Eigen::Vector3f, 2 * kSideWindow + 1> window;
   for (int j = -kSideWindow; j <= kSideWindow; ++j)
-    point += positions[(centre + j + n) % n];
-  point /= static_cast<float> (2 * kSideWindow + 1);
-  Eigen::Matrix3f scatter = Eigen::Matrix3f::Zero ();
-  for (int j = -kSideWindow; j <= kSideWindow; ++j)
-  {
-    const Eigen::Vector3f d = positions[(centre + j + n) % n] - point;
-    scatter += d * d.transpose ();
-  }
-  scatter /= static_cast<float> (2 * kSideWindow + 1);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver (scatter);
-  const Eigen::Vector3f variances = solver.eigenvalues ();  // increasing
-  normal = solver.eigenvectors ().col (0);
-  const float sqr = tolerance * tolerance;
+    window[j + kSideWindow] = positions[(centre + j + n) % n];
+  const PlaneFit plane = fitPlane (window.data (), static_cast<int> (window.size ()));
+  point = plane.centroid;
+  normal = plane.normal;
   // In the plane, and wider across the stretch than the tolerance: a
   // straight stretch lies in every plane through it.
-  return variances (0) <= sqr && variances (1) >= 4.f * sqr;
+  const float sqr = tolerance * tolerance;
+  return plane.residual <= sqr && plane.spread >= 4.f * sqr;
 }
 }  // namespace
 

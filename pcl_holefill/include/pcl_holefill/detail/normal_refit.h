@@ -33,8 +33,8 @@ constexpr float kCreaseNormalDifference = 0.5f;
   * a blended normal has only those close to the point. When the best plane
   * holds clearly more neighbours than the point's own (3 more, or 2 when
   * the point lies alone on its own plane and the best is a crease away,
-  * and 1.2 times as many), the normal is refitted by PCA to that plane's neighbours
-  * and returned in \a refitted, on the side of the old one. Exact normals,
+  * and 1.2 times as many), the normal is refitted by PCA to that plane's
+  * neighbours and returned in \a refitted, on the side of the old one. Exact normals,
   * and estimated normals away from creases, already hold the most
   * neighbours: false, nothing changes. Only near a crease (a neighbour's
   * normal kCreaseNormalDifference away): on smooth parts a plane tilted
@@ -79,6 +79,7 @@ struct PlaneFit
   Eigen::Vector3f normal = Eigen::Vector3f::UnitZ ();
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero ();
   float residual = 0.f;
+  float spread = 0.f;  //!< the variance along the plane's narrower direction within it
 };
 
 /** \brief The PCA plane of \a count positions (at least one). */

@@ -37,8 +37,9 @@ struct RimSidePlane
 /** \brief The side planes of the rim \a positions (in loop order, the loop
   * closed) with unit \a normals: a window of kSideWindow points on either
   * side of every kSideWindow-th point that lies in a plane (variance along
-  * its normal within \a tolerance squared) and spans it (across its
-  * longest direction, twice \a tolerance at least), where at least
+  * its normal within \a tolerance squared) and spans it (a standard
+  * deviation of twice \a tolerance at least along its narrower direction
+  * within the plane), where at least
   * 3 kSideWindow rim points lie within \a tolerance of that plane and
   * every other one below it, and the normals of those on it lie along it
   * (the mean |n . m| at most kMaxSideAlong: a flat hole's rim, or a cap's,

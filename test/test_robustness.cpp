@@ -402,50 +402,8 @@ TEST (ThinPlateCorner, IsFilledToTheCornerOnEveryFace)
   }
 }
 
-/** fandisk's mesh vertices as the cloud (what a user who has only the mesh
-  * passes), normals the area-weighted mean of the faces around each vertex:
-  * a sampling the corpus's samplers do not make, dense along curved strips
-  * and sparse across flat faces. */
-Cloud
-fandiskVertices (const pcl_holefill::shapes::Shape &mesh)
-{
-  std::map<std::tuple<double, double, double>, std::size_t> index;
-  std::vector<Eigen::Vector3d> positions, normals;
-  for (const auto &face : mesh.faces)
-  {
-    const Eigen::Vector3d n = face.normal ();
-    if (!n.allFinite ())
-      continue;  // a degenerate face: no direction to add to its corners
-    for (std::size_t k = 1; k + 1 < face.corners.size (); ++k)
-    {
-      const Eigen::Vector3d &a = face.corners[0], &b = face.corners[k], &c = face.corners[k + 1];
-      const Eigen::Vector3d weighted = 0.5 * (b - a).cross (c - a).norm () * n;
-      for (const Eigen::Vector3d *v : {&a, &b, &c})
-      {
-        const auto key = std::make_tuple (v->x (), v->y (), v->z ());
-        const auto [it, inserted] = index.emplace (key, positions.size ());
-        if (inserted)
-        {
-          positions.push_back (*v);
-          normals.push_back (Eigen::Vector3d::Zero ());
-        }
-        normals[it->second] += weighted;
-      }
-    }
-  }
-  Cloud cloud;
-  for (std::size_t i = 0; i < positions.size (); ++i)
-  {
-    pcl::PointNormal q;
-    q.getVector3fMap () = positions[i].cast<float> ();
-    q.getNormalVector3fMap () = normals[i].normalized ().cast<float> ();
-    cloud.push_back (q);
-  }
-  return cloud;
-}
-
 /** Cuts the ball of \a radius spacings \a h at \a centre out of \a cloud
-  * (fandiskVertices), fills it with no option and scores the fill against
+  * (corpus::meshVertices), fills it with no option and scores the fill against
   * \a mesh; \a reports: the holes the filler reported. */
 pcl_holefill::shapes::FillQuality
 fillBallOfVertices (const pcl_holefill::shapes::Shape &mesh, const Cloud &cloud, const Eigen::Vector3d &centre,
@@ -474,7 +432,7 @@ TEST (MeshVertices, FaceBesideAWallIsFilled)
   std::string error;
   // The test command installs libcgal-demo: without fandisk this case is not run, and says so.
   ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
-  const Cloud cloud = fandiskVertices (mesh);
+  const Cloud cloud = corpus::meshVertices (mesh);
   const double h = pcl_holefill::shapes::meanSpacing (cloud);
   // Centre (unit-cube coordinates) and radius in spacings.
   const std::vector<std::pair<Eigen::Vector3d, double>> balls = {
@@ -509,7 +467,7 @@ TEST (MeshVertices, TiltedVertexNormalsBoundOnlyBeyondTheirOwnFace)
   pcl_holefill::shapes::Shape mesh;
   std::string error;
   ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
-  const Cloud cloud = fandiskVertices (mesh);
+  const Cloud cloud = corpus::meshVertices (mesh);
   const double h = pcl_holefill::shapes::meanSpacing (cloud);
   struct Case
   {

@@ -39,6 +39,20 @@ constexpr int kMinNoisyNeighbours = 24;
 // 0.91-0.92 and 1.23-1.24 (unit squares, jittered and random samples).
 constexpr int kNoiseNeighbours = 64;
 constexpr std::size_t kNoiseSamples = 2000;
+// Creases, borders, curvature and a thin part's far sheet only raise a
+// neighbourhood's reading. Whether a cloud is noisy at all is read off its
+// flattest quarter: on a CAD mesh's vertices (dense along curved strips and
+// feature lines) most neighbourhoods of 64 reach a crease, and the median
+// read fandisk's noise-free vertices as 0.73 pitch of noise (k = 46: PCA
+// blended the two sides of its blade and turned 7 % of the normals more
+// than 29 degrees off); the quarter reads 0.25. How many neighbours a noisy
+// cloud needs stays read at the median, which kNormalNeighboursPerNoise was
+// set on (the quarter's lower count left a thin bowl at 0.3 % noise with
+// 1.5 times the max error). On pure noise the quarter reads
+// kQuarterOverMedian of the median (random squares at 0.25-1.5 pitches of
+// noise: 0.922-0.928); it is divided by that.
+constexpr float kFlattestShare = 0.25f;
+constexpr float kQuarterOverMedian = 0.925f;
 // A PCA normal whose neighbours reach another sheet of a thin part (the far
 // wall of a shell a few pitches thick, where a hole left the neighbourhood
 // one-sided) is tilted towards it: 90 % of the rim points of holes in a
@@ -124,15 +138,15 @@ refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointClo
   return suspects.size ();
 }
 
-float
-noiseInPitches (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples)
+NoiseReading
+readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples)
 {
   // On a noisy flat piece the smallest eigenvalue of the k neighbours'
   // scatter (per point) is the noise's variance, and the two others add up
   // to k pitch^2 / (2 pi) (k points fill a disc of k pitch^2 / pi): noise^2 /
   // pitch^2 = lambda_0 / (lambda_1 + lambda_2) k / (2 pi). A surface curved
   // at radius R reads as ~0.05 k pitch^2 / R of noise (0.07 pitch for k = 64
-  // on a sphere 40 pitches in radius); the median ignores creases and borders.
+  // on a sphere 40 pitches in radius).
   const auto &cloud = *search.getInputCloud ();
   std::vector<float> ratios;
   const std::size_t stride = std::max<std::size_t> (1, cloud.size () / std::max<std::size_t> (samples, 1));
@@ -150,11 +164,20 @@ noiseInPitches (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::si
     if (lambda (1) + lambda (2) > 0.f)
       ratios.push_back (std::max (lambda (0), 0.f) / (lambda (1) + lambda (2)));
   }
+  NoiseReading noise;
   if (ratios.empty ())
-    return 0.f;
-  const auto middle = ratios.begin () + static_cast<std::ptrdiff_t> (ratios.size () / 2);
-  std::nth_element (ratios.begin (), middle, ratios.end ());
-  return std::sqrt (*middle * static_cast<float> (k) / (2.f * static_cast<float> (M_PI)));
+    return noise;
+  const auto inPitches = [k] (float ratio) {
+    return std::sqrt (ratio * static_cast<float> (k) / (2.f * static_cast<float> (M_PI)));
+  };
+  const auto at = [&ratios] (float share) {
+    return ratios.begin () + static_cast<std::ptrdiff_t> (share * static_cast<float> (ratios.size ()));
+  };
+  std::nth_element (ratios.begin (), at (0.5f), ratios.end ());
+  noise.median = inPitches (*at (0.5f));
+  std::nth_element (ratios.begin (), at (kFlattestShare), at (0.5f));
+  noise.flattest = inPitches (*at (kFlattestShare)) / kQuarterOverMedian;
+  return noise;
 }
 
 int
@@ -164,6 +187,13 @@ normalNeighboursForNoise (float noise_in_pitches)
   if (!std::isfinite (wanted) || wanted < static_cast<float> (kMinNoisyNeighbours))
     return kNormalNeighbours;
   return static_cast<int> (std::min (wanted, static_cast<float> (kMaxNormalNeighbours)));
+}
+
+int
+normalNeighboursForNoise (const NoiseReading &noise)
+{
+  const float noisy_from = static_cast<float> (kMinNoisyNeighbours) / kNormalNeighboursPerNoise;
+  return noise.flattest < noisy_from ? kNormalNeighbours : normalNeighboursForNoise (noise.median);
 }
 
 int
@@ -177,7 +207,7 @@ estimateOrientedNormals (pcl::PointCloud<pcl::PointNormal> &cloud, unsigned int 
   // One tree for the noise and the normals (PCL keeps a tree already on its input).
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree (new pcl::search::KdTree<pcl::PointXYZ>);
   tree->setInputCloud (xyz);
-  const int k = normalNeighboursForNoise (noiseInPitches (*tree, kNoiseNeighbours, kNoiseSamples));
+  const int k = normalNeighboursForNoise (readNoise (*tree, kNoiseNeighbours, kNoiseSamples));
   pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation (threads);
   estimation.setInputCloud (xyz);
   estimation.setSearchMethod (tree);

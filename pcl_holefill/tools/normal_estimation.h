@@ -33,15 +33,29 @@ refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointClo
                    unsigned int threads);
 
 /** The noise of a cloud across its surface, in sampling pitches (sqrt of
-  * the area per point): PCA over the \a k nearest neighbours of about
-  * \a samples points spread over the cloud that \a search holds, the median
-  * of the noise their scatter shows; 0 when no point has k neighbours. */
-float
-noiseInPitches (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples);
+  * the area per point), as PCA over the k nearest neighbours of points
+  * spread over the cloud shows it: at the median neighbourhood, and on the
+  * flattest quarter (scaled to read pure noise as the median does). */
+struct NoiseReading
+{
+  float median = 0.f;
+  float flattest = 0.f;
+};
+
+/** The NoiseReading of the cloud that \a search holds, over \a k
+  * neighbours of about \a samples points; zeros when no point has k. */
+NoiseReading
+readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples);
 
 /** The neighbours of PCA normals for a cloud of this noise (in pitches):
   * PCL's usual 16 up to 0.375 pitch, then 64 per pitch, at most 128. */
 int
 normalNeighboursForNoise (float noise_in_pitches);
+
+/** The neighbours for a cloud read as \a noise: 16 when its flattest
+  * quarter is clean (under 0.375 pitch), else normalNeighboursForNoise
+  * of the median. */
+int
+normalNeighboursForNoise (const NoiseReading &noise);
 
 }  // namespace pcl_holefill_tool

@@ -16,7 +16,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
+#include <tuple>
 
 namespace corpus
 {
@@ -443,6 +445,44 @@ fandisk (Shape &shape, std::string &error)
   error = "fandisk.off was not found at configure time (apt-get install libcgal-demo)";
   return false;
 #endif
+}
+
+Cloud
+meshVertices (const Shape &mesh)
+{
+  std::map<std::tuple<double, double, double>, std::size_t> index;
+  std::vector<Eigen::Vector3d> positions, normals;
+  for (const auto &face : mesh.faces)
+  {
+    const Eigen::Vector3d n = face.normal ();
+    if (!n.allFinite ())
+      continue;  // a degenerate face: no direction to add to its corners
+    for (std::size_t k = 1; k + 1 < face.corners.size (); ++k)
+    {
+      const Eigen::Vector3d &a = face.corners[0], &b = face.corners[k], &c = face.corners[k + 1];
+      const Eigen::Vector3d weighted = 0.5 * (b - a).cross (c - a).norm () * n;
+      for (const Eigen::Vector3d *v : {&a, &b, &c})
+      {
+        const auto key = std::make_tuple (v->x (), v->y (), v->z ());
+        const auto [it, inserted] = index.emplace (key, positions.size ());
+        if (inserted)
+        {
+          positions.push_back (*v);
+          normals.push_back (Eigen::Vector3d::Zero ());
+        }
+        normals[it->second] += weighted;
+      }
+    }
+  }
+  Cloud cloud;
+  for (std::size_t i = 0; i < positions.size (); ++i)
+  {
+    pcl::PointNormal q;
+    q.getVector3fMap () = positions[i].cast<float> ();
+    q.getNormalVector3fMap () = normals[i].normalized ().cast<float> ();
+    cloud.push_back (q);
+  }
+  return cloud;
 }
 
 CutCloud

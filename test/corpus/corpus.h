@@ -82,6 +82,13 @@ Shape lBlock ();    //!< an L-shaped solid: convex and concave edges
 bool
 fandisk (Shape &shape, std::string &error);
 
+/** \brief \a mesh's vertices as the cloud (what a user who has only a mesh
+  * passes), normals the area-weighted mean of the faces around each vertex:
+  * a sampling the corpus's samplers do not make, dense along curved strips
+  * and feature lines, sparse across flat faces. */
+Cloud
+meshVertices (const Shape &mesh);
+
 /** \brief A test case: a model, a sampling, and holes to cut. */
 struct Case
 {

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace pcl_holefill_tool
@@ -39,20 +40,20 @@ constexpr int kMinNoisyNeighbours = 24;
 // 0.91-0.92 and 1.23-1.24 (unit squares, jittered and random samples).
 constexpr int kNoiseNeighbours = 64;
 constexpr std::size_t kNoiseSamples = 2000;
-// Creases, borders, curvature and a thin part's far sheet only raise a
-// neighbourhood's reading. Whether a cloud is noisy at all is read off its
-// flattest quarter: on a CAD mesh's vertices (dense along curved strips and
-// feature lines) most neighbourhoods of 64 reach a crease, and the median
-// read fandisk's noise-free vertices as 0.73 pitch of noise (k = 46: PCA
-// blended the two sides of its blade and turned 7 % of the normals more
-// than 29 degrees off); the quarter reads 0.25. How many neighbours a noisy
-// cloud needs stays read at the median, which kNormalNeighboursPerNoise was
-// set on (the quarter's lower count left a thin bowl at 0.3 % noise with
-// 1.5 times the max error). On pure noise the quarter reads
-// kQuarterOverMedian of the median (random squares at 0.25-1.5 pitches of
-// noise: 0.922-0.928); it is divided by that.
-constexpr float kFlattestShare = 0.25f;
-constexpr float kQuarterOverMedian = 0.925f;
+// A cloud whose noise, read over its points' nearest kNormalNeighbours,
+// is under kCleanCloseNoise pitch is clean, whatever the reading over 64
+// says: creases raise a reading wherever a neighbourhood reaches one, and
+// on a CAD mesh's vertices (dense along curved strips and feature lines)
+// most neighbourhoods of 64 do. Their median read fandisk's noise-free
+// vertices as 0.73 pitch of noise (k = 46: PCA blended the two sides of its
+// blade and turned 7 % of the normals more than 29 degrees off); over 16 it
+// reads 0.05. Over 16, pure noise reads kCloseReadsOfNoise of itself at
+// 0.25-0.5 pitch (random squares; the reading is divided by that) and
+// saturates above. Not 0.375, the count's own threshold: a thin bowl at
+// 0.37 pitch of noise read 0.36 over 16, and at k = 16 instead of the 41
+// its reading over 64 asked for had twice the max error.
+constexpr float kCleanCloseNoise = 0.25f;
+constexpr float kCloseReadsOfNoise = 0.907f;
 // A PCA normal whose neighbours reach another sheet of a thin part (the far
 // wall of a shell a few pitches thick, where a hole left the neighbourhood
 // one-sided) is tilted towards it: 90 % of the rim points of holes in a
@@ -138,8 +139,24 @@ refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointClo
   return suspects.size ();
 }
 
-NoiseReading
-readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples)
+namespace
+{
+/** lambda_0 / (lambda_1 + lambda_2) of the scatter of \a found in \a cloud (NaN when degenerate). */
+float
+flatnessRatio (const pcl::PointCloud<pcl::PointXYZ> &cloud, const pcl::Indices &found)
+{
+  Eigen::Matrix3f scatter;
+  Eigen::Vector4f centroid;
+  if (pcl::computeMeanAndCovarianceMatrix (cloud, found, scatter, centroid) == 0)
+    return std::numeric_limits<float>::quiet_NaN ();
+  const Eigen::Vector3f lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> (scatter).eigenvalues ();
+  return lambda (1) + lambda (2) > 0.f ? std::max (lambda (0), 0.f) / (lambda (1) + lambda (2))
+                                       : std::numeric_limits<float>::quiet_NaN ();
+}
+
+/** The median of \a ratios as a noise over \a k neighbours, in pitches (0 when none). */
+float
+medianInPitches (std::vector<float> ratios, int k)
 {
   // On a noisy flat piece the smallest eigenvalue of the k neighbours'
   // scatter (per point) is the noise's variance, and the two others add up
@@ -147,8 +164,16 @@ readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t 
   // pitch^2 = lambda_0 / (lambda_1 + lambda_2) k / (2 pi). A surface curved
   // at radius R reads as ~0.05 k pitch^2 / R of noise (0.07 pitch for k = 64
   // on a sphere 40 pitches in radius).
+  return std::sqrt (medianOf (std::move (ratios)) * static_cast<float> (k) / (2.f * static_cast<float> (M_PI)));
+}
+}  // namespace
+
+NoiseReading
+readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples)
+{
   const auto &cloud = *search.getInputCloud ();
-  std::vector<float> ratios;
+  const int close = std::min (k, kNormalNeighbours);
+  std::vector<float> ratios, close_ratios;
   const std::size_t stride = std::max<std::size_t> (1, cloud.size () / std::max<std::size_t> (samples, 1));
   pcl::Indices found;
   std::vector<float> sqr_distances;
@@ -156,27 +181,20 @@ readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t 
   {
     if (!pcl::isFinite (cloud[i]) || search.nearestKSearch (cloud[i], k, found, sqr_distances) < k)
       continue;
-    Eigen::Matrix3f scatter;
-    Eigen::Vector4f centroid;
-    if (pcl::computeMeanAndCovarianceMatrix (cloud, found, scatter, centroid) == 0)
-      continue;
-    const Eigen::Vector3f lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> (scatter).eigenvalues ();
-    if (lambda (1) + lambda (2) > 0.f)
-      ratios.push_back (std::max (lambda (0), 0.f) / (lambda (1) + lambda (2)));
+    ratios.push_back (flatnessRatio (cloud, found));
+    // The nearest `close` of them (the search need not sort its results).
+    std::vector<std::pair<float, int>> by_distance;
+    for (std::size_t j = 0; j < found.size (); ++j)
+      by_distance.emplace_back (sqr_distances[j], found[j]);
+    std::nth_element (by_distance.begin (), by_distance.begin () + close - 1, by_distance.end ());
+    pcl::Indices nearest;
+    for (int j = 0; j < close; ++j)
+      nearest.push_back (by_distance[j].second);
+    close_ratios.push_back (flatnessRatio (cloud, nearest));
   }
   NoiseReading noise;
-  if (ratios.empty ())
-    return noise;
-  const auto inPitches = [k] (float ratio) {
-    return std::sqrt (ratio * static_cast<float> (k) / (2.f * static_cast<float> (M_PI)));
-  };
-  const auto at = [&ratios] (float share) {
-    return ratios.begin () + static_cast<std::ptrdiff_t> (share * static_cast<float> (ratios.size ()));
-  };
-  std::nth_element (ratios.begin (), at (0.5f), ratios.end ());
-  noise.median = inPitches (*at (0.5f));
-  std::nth_element (ratios.begin (), at (kFlattestShare), at (0.5f));
-  noise.flattest = inPitches (*at (kFlattestShare)) / kQuarterOverMedian;
+  noise.median = medianInPitches (std::move (ratios), k);
+  noise.close = medianInPitches (std::move (close_ratios), close) / kCloseReadsOfNoise;
   return noise;
 }
 
@@ -192,8 +210,7 @@ normalNeighboursForNoise (float noise_in_pitches)
 int
 normalNeighboursForNoise (const NoiseReading &noise)
 {
-  const float noisy_from = static_cast<float> (kMinNoisyNeighbours) / kNormalNeighboursPerNoise;
-  return noise.flattest < noisy_from ? kNormalNeighbours : normalNeighboursForNoise (noise.median);
+  return noise.close < kCleanCloseNoise ? kNormalNeighbours : normalNeighboursForNoise (noise.median);
 }
 
 int

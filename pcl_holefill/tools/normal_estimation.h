@@ -33,13 +33,15 @@ refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointClo
                    unsigned int threads);
 
 /** The noise of a cloud across its surface, in sampling pitches (sqrt of
-  * the area per point), as PCA over the k nearest neighbours of points
-  * spread over the cloud shows it: at the median neighbourhood, and on the
-  * flattest quarter (scaled to read pure noise as the median does). */
+  * the area per point), as PCA shows it at the median neighbourhood of
+  * points spread over the cloud: over their k nearest neighbours (median),
+  * and over their 16 nearest (close; scaled to read noise of 0.25-0.5 pitch
+  * right; it saturates above, and a crease a few pitches away does not
+  * reach it). */
 struct NoiseReading
 {
   float median = 0.f;
-  float flattest = 0.f;
+  float close = 0.f;
 };
 
 /** The NoiseReading of the cloud that \a search holds, over \a k
@@ -52,9 +54,9 @@ readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t 
 int
 normalNeighboursForNoise (float noise_in_pitches);
 
-/** The neighbours for a cloud read as \a noise: 16 when its flattest
-  * quarter is clean (under 0.375 pitch), else normalNeighboursForNoise
-  * of the median. */
+/** The neighbours for a cloud read as \a noise: 16 when it reads clean
+  * over 16 (under 0.25 pitch), else normalNeighboursForNoise of the
+  * median. */
 int
 normalNeighboursForNoise (const NoiseReading &noise);
 

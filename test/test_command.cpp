@@ -855,6 +855,31 @@ TEST (NormalEstimation, ACadMeshsVerticesReadAsNoiseFree)
   EXPECT_LT (off, truth.size () * 2 / 100);  // reached: 59 of 6,475 (k = 46: 462)
 }
 
+TEST (NormalEstimation, AThinCleanSlabReadsCleanOverItsClosestNeighbours)
+{
+  // Two sheets (random unit squares, 10,000 samples each) a few pitches
+  // apart and noise-free: 64 neighbours reach across and read the gap as
+  // noise (k = 86-107 from that alone); the 16 nearest stay on their sheet
+  // from 3 pitches apart. At 2 they reach across too: still read noisy.
+  constexpr std::size_t n = 20000;
+  const float pitch = std::sqrt (2.f / n);
+  for (const float apart : {2.f, 3.f, 4.f})
+  {
+    shapes::Cloud slab = randomSquare (n / 2, 21);
+    for (auto p : randomSquare (n / 2, 22))
+    {
+      p.z -= apart * pitch;
+      slab.push_back (p);
+    }
+    const auto noise = measuredNoise (slab);
+    EXPECT_GT (noise.median, 1.f) << apart;  // reached: 1.3-1.7
+    if (apart >= 3.f)
+      EXPECT_EQ (pcl_holefill_tool::normalNeighboursForNoise (noise), 16) << apart;  // reached: close 0.00
+    else
+      EXPECT_GT (pcl_holefill_tool::normalNeighboursForNoise (noise), 64) << apart;  // reached: close 0.6
+  }
+}
+
 TEST (NormalEstimation, NormalsAtAHoleInOneSheetOfAThinSlabAreRefittedOnTheirSheet)
 {
   // A slab 4 pitches thick (the unit square at z = 0.5, normal +z, and 4

@@ -172,7 +172,7 @@ NoiseReading
 readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t samples)
 {
   const auto &cloud = *search.getInputCloud ();
-  const int close = std::min (k, kNormalNeighbours);
+  const int close_k = std::min (k, kNormalNeighbours);
   std::vector<float> ratios, close_ratios;
   const std::size_t stride = std::max<std::size_t> (1, cloud.size () / std::max<std::size_t> (samples, 1));
   pcl::Indices found;
@@ -182,19 +182,19 @@ readNoise (const pcl::search::Search<pcl::PointXYZ> &search, int k, std::size_t 
     if (!pcl::isFinite (cloud[i]) || search.nearestKSearch (cloud[i], k, found, sqr_distances) < k)
       continue;
     ratios.push_back (flatnessRatio (cloud, found));
-    // The nearest `close` of them (the search need not sort its results).
+    // The nearest close_k of them (the search need not sort its results).
     std::vector<std::pair<float, int>> by_distance;
     for (std::size_t j = 0; j < found.size (); ++j)
       by_distance.emplace_back (sqr_distances[j], found[j]);
-    std::nth_element (by_distance.begin (), by_distance.begin () + close - 1, by_distance.end ());
+    std::nth_element (by_distance.begin (), by_distance.begin () + close_k - 1, by_distance.end ());
     pcl::Indices nearest;
-    for (int j = 0; j < close; ++j)
+    for (int j = 0; j < close_k; ++j)
       nearest.push_back (by_distance[j].second);
     close_ratios.push_back (flatnessRatio (cloud, nearest));
   }
   NoiseReading noise;
   noise.median = medianInPitches (std::move (ratios), k);
-  noise.close = medianInPitches (std::move (close_ratios), close) / kCloseReadsOfNoise;
+  noise.close = medianInPitches (std::move (close_ratios), close_k) / kCloseReadsOfNoise;
   return noise;
 }
 

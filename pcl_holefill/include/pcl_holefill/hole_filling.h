@@ -253,6 +253,12 @@ private:
   static Eigen::Vector3f
   surroundingsCentroid (const Surroundings &surroundings);
 
+  /** The rim's points in loop order: their \a positions and unit \a normals
+    * (as the fill's copy has them now). */
+  static void
+  rimPositionsAndNormals (const Surroundings &surroundings, std::vector<Eigen::Vector3f> &positions,
+                          std::vector<Eigen::Vector3f> &normals);
+
   /** Sets the fill's copy of the rim's normals to the normal of the face
     * across the opening (detail::openingNormal) and, on a flat rim, moves
     * the copy onto the plane of its outermost points; returns the depth

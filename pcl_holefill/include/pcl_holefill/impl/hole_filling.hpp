@@ -834,6 +834,19 @@ HoleFilling<PointT>::surroundingsCentroid (const Surroundings &surroundings)
   return centroid / static_cast<float> (std::max<std::size_t> (1, surroundings.input_points));
 }
 
+template <typename PointT> void
+HoleFilling<PointT>::rimPositionsAndNormals (const Surroundings &surroundings, std::vector<Eigen::Vector3f> &positions,
+                                             std::vector<Eigen::Vector3f> &normals)
+{
+  positions.clear ();
+  normals.clear ();
+  for (const auto i : surroundings.rim)
+  {
+    positions.push_back ((*surroundings.cloud)[i].getVector3fMap ());
+    normals.push_back ((*surroundings.cloud)[i].getNormalVector3fMap ().normalized ());
+  }
+}
+
 template <typename PointT> bool
 HoleFilling<PointT>::ranAlongWalls (const Surroundings &surroundings, const HoleReport &report)
 {
@@ -864,11 +877,7 @@ HoleFilling<PointT>::turnRimAcrossOpening (Surroundings &surroundings, Eigen::Ve
 {
   PointCloud &cloud = *surroundings.cloud;
   std::vector<Eigen::Vector3f> positions, normals;
-  for (const auto i : surroundings.rim)
-  {
-    positions.push_back (cloud[i].getVector3fMap ());
-    normals.push_back (cloud[i].getNormalVector3fMap ().normalized ());
-  }
+  rimPositionsAndNormals (surroundings, positions, normals);
   across = detail::openingNormal (positions, normals, surroundingsCentroid (surroundings));
   if (across.isZero ())
     return 0.f;
@@ -1268,11 +1277,7 @@ HoleFilling<PointT>::holdAtRimSidePlanes (Surroundings &surroundings, float tole
 {
   PointCloud &cloud = *surroundings.cloud;
   std::vector<Eigen::Vector3f> positions, rim_normals;
-  for (const auto i : surroundings.rim)
-  {
-    positions.push_back (cloud[i].getVector3fMap ());
-    rim_normals.push_back (cloud[i].getNormalVector3fMap ().normalized ());
-  }
+  rimPositionsAndNormals (surroundings, positions, rim_normals);
   const std::vector<detail::RimSidePlane> sides = detail::findRimSidePlanes (positions, rim_normals, tolerance);
   for (const auto &side : sides)
   {
@@ -1296,11 +1301,7 @@ HoleFilling<PointT>::keepFacesApartAtCreases (detail::ElasticSampler<PointT> &sa
                                               const HoleReport &report)
 {
   std::vector<Eigen::Vector3f> positions, normals;
-  for (const auto i : surroundings.rim)
-  {
-    positions.push_back ((*surroundings.cloud)[i].getVector3fMap ());
-    normals.push_back ((*surroundings.cloud)[i].getNormalVector3fMap ().normalized ());
-  }
+  rimPositionsAndNormals (surroundings, positions, normals);
   // The chord misses a curved crease by its sagitta and the crossings lie
   // within a spacing of the crease: half d_eq of slack, more with noise.
   sampler.setCreaseChords (detail::findCreaseChords (positions, normals, scale.spacing),

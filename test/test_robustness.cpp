@@ -402,6 +402,53 @@ TEST (ThinPlateCorner, IsFilledToTheCornerOnEveryFace)
   }
 }
 
+// The same eight corners on noisy samples (exact normals). The faces'
+// corners lie on the rim's outline seen along the hole's axis, and the
+// noise of the rim points put them past it: the enclosure test (pi along
+// the axis) cut about every other one, and the fronts stopped with the
+// corners open. On a noisy rim with a crease the axis now allows 200
+// degrees, up to half a pitch of rim noise.
+struct NoisyCorners
+{
+  Sampling sampling;
+  double noise;
+  double max_error;  //!< bound: what this code reached plus a quarter
+};
+
+void
+PrintTo (const NoisyCorners &c, std::ostream *os)
+{
+  *os << corpus::toString (c.sampling) << ", noise " << c.noise << ", max error " << c.max_error;
+}
+
+class NoisyThinPlateCorners : public testing::TestWithParam<NoisyCorners>
+{};
+
+TEST_P (NoisyThinPlateCorners, AreFilledToTheirCorners)
+{
+  auto c = makeCase (corpus::fin (), GetParam ().sampling, GetParam ().noise, false, false);
+  c.holes = corpus::finCornerHoles (20000);
+  const Outcome o = fillCase (c);
+  EXPECT_EQ (o.detection.found, o.detection.cut);
+  EXPECT_EQ (o.detection.false_holes, 0u);
+  EXPECT_TRUE (o.fill.kept_unchanged);
+  EXPECT_GE (o.fill.coverage, 0.95);
+  EXPECT_LE (o.fill.max_error, GetParam ().max_error);
+  EXPECT_EQ (o.closed_but_open, 0u);
+}
+
+// Reached: Poisson-disk 0.1 % 96.8 % covered (was 91.5 %), max error 0.0129;
+// jittered 0.3 % 97.2 % (was 92.0 %), 0.0081; scan lines 0.3 % 97.5 % (was
+// 87.1 %), 0.0193.
+INSTANTIATE_TEST_SUITE_P (Samplings, NoisyThinPlateCorners,
+                          testing::Values (NoisyCorners{Sampling::kPoisson, 0.001, 0.016},
+                                           NoisyCorners{Sampling::kJittered, 0.003, 0.010},
+                                           NoisyCorners{Sampling::kScan, 0.003, 0.024}),
+                          [] (const testing::TestParamInfo<NoisyCorners> &info) {
+                            return corpus::toString (info.param.sampling) + std::string ("_noise") +
+                                   std::to_string (static_cast<int> (info.param.noise * 1000 + 0.5));
+                          });
+
 /** Cuts the ball of \a radius spacings \a h at \a centre out of \a cloud
   * (corpus::meshVertices), fills it with no option and scores the fill against
   * \a mesh; \a reports: the holes the filler reported. */

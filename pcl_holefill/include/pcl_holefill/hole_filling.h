@@ -318,20 +318,31 @@ private:
   static bool
   rimSeesCrease (const Surroundings &surroundings, float reach);
 
-  /** Does the combination constraint hold each face of the rim within its
-    * noise-free tolerance (0.1 h)? It does on a clean rim (\a report's
-    * noise) that shows a crease, when the constraint is on. */
-  bool
-  facesHeldAtCreases (const Surroundings &surroundings, const HoleScale &scale, const HoleReport &report) const;
+  /** Widest empty sectors (radians) a new point may see round the rim,
+    * seen along the hole's axis and along its own normal
+    * (ElasticSampler::setRim). */
+  struct RimGapLimits
+  {
+    float along_axis;
+    float along_normal;
+  };
+
+  /** The limits for this rim. Wider on a rim that shows a crease when the
+    * combination constraint is on: both on a clean rim (\a report's noise;
+    * the constraint holds each face within 0.1 h), the axis's alone on a rim
+    * with up to half a pitch of noise. The strict ones elsewhere and across
+    * an opening. */
+  RimGapLimits
+  rimGapLimits (const Surroundings &surroundings, const HoleScale &scale, const HoleReport &report,
+                bool across_opening) const;
 
   /** Has \a sampler keep new points within the hole's closed rim: points
     * evenly along it (at most detail::kRimOutlinePoints), seen along the
-    * mean of its normals (no test where they cancel out); with wider limits
-    * where \a faces_held_at_creases (the test is the backstop for fronts
-    * nothing else holds). */
+    * mean of its normals (no test where they cancel out), within \a limits
+    * (the test is the backstop for fronts nothing else holds). */
   static void
   encloseByRim (detail::ElasticSampler<PointT> &sampler, const Surroundings &surroundings,
-                bool faces_held_at_creases);
+                const RimGapLimits &limits);
 
   /** Has \a sampler keep new points below the rim's supporting tangent
     * planes: those of rim points that (almost) every other rim point lies

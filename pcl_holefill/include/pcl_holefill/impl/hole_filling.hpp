@@ -79,7 +79,7 @@ constexpr float kMaxRimGapAlongNormal = static_cast<float> (200.0 * M_PI / 180.0
 // both faces' corners) the faces' corners lie past the rim's outline in
 // every view, seen 183-234 degrees empty (fin corners, 48 cases: 28 -> 41
 // covered to 99 %, 11 -> 38 closed, the largest error 0.42 -> 0.35 pitch;
-// without any test alike). The noisy fin's end still needs the strict limits
+// without any test alike). A noisy fin's end needs narrower limits
 // (240 degrees there: sums of max errors at 0.3 / 0.5 % 0.815 / 1.290 ->
 // 0.843 / 1.375).
 constexpr float kMaxRimGapOnCleanCreasedRim = static_cast<float> (240.0 * M_PI / 180.0);

@@ -407,7 +407,8 @@ TEST (ThinPlateCorner, IsFilledToTheCornerOnEveryFace)
 // noise of the rim points put them past it: the enclosure test (pi along
 // the axis) cut about every other one, and the fronts stopped with the
 // corners open. On a noisy rim with a crease the axis now allows 200
-// degrees, up to half a pitch of rim noise.
+// degrees, up to half a pitch of rim noise; the side strips' rim planes hold
+// the faces at the corners.
 struct NoisyCorners
 {
   Sampling sampling;
@@ -437,13 +438,16 @@ TEST_P (NoisyThinPlateCorners, AreFilledToTheirCorners)
   EXPECT_EQ (o.closed_but_open, 0u);
 }
 
-// Reached: Poisson-disk 0.1 % 96.8 % covered (was 91.5 %), max error 0.0129;
+// Reached: Poisson-disk 0.1 % 96.6 % covered (was 91.5 %), max error 0.0081;
 // jittered 0.3 % 97.2 % (was 92.0 %), 0.0081; scan lines 0.3 % 97.5 % (was
-// 87.1 %), 0.0193.
+// 87.1 %), 0.0193; jittered 0.5 % 98.1 %, 0.0214 (was 0.0364: the faces ran
+// past the side strips, whose middle points see one crease each and gave
+// no rim plane).
 INSTANTIATE_TEST_SUITE_P (Samplings, NoisyThinPlateCorners,
-                          testing::Values (NoisyCorners{Sampling::kPoisson, 0.001, 0.016},
+                          testing::Values (NoisyCorners{Sampling::kPoisson, 0.001, 0.0105},
                                            NoisyCorners{Sampling::kJittered, 0.003, 0.010},
-                                           NoisyCorners{Sampling::kScan, 0.003, 0.024}),
+                                           NoisyCorners{Sampling::kScan, 0.003, 0.024},
+                                           NoisyCorners{Sampling::kJittered, 0.005, 0.027}),
                           [] (const testing::TestParamInfo<NoisyCorners> &info) {
                             return corpus::toString (info.param.sampling) + std::string ("_noise") +
                                    std::to_string (static_cast<int> (info.param.noise * 1000 + 0.5));

@@ -1207,14 +1207,15 @@ HoleFilling<PointT>::rimGapLimits (const Surroundings &surroundings, const HoleS
   // RimStatistics::crease_share counts: taken from that share instead, one
   // of the 48 fin corners (random, 20 pitches) lost its widened limits and
   // 18 points of coverage.
+  const RimGapLimits strict{detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal};
   if (across_opening || !combination_constraint_ ||
       !rimSeesCrease (surroundings, detail::kNoiseReachInSpacings * scale.spacing))
-    return {detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal};
+    return strict;
   if (detail::noiseFree (scale.spacing, report.noise))
     return {detail::kMaxRimGapOnCleanCreasedRim, detail::kMaxRimGapOnCleanCreasedRim};
-  if (report.noise <= detail::kMaxNoiseForWiderAxisLimitInPitches * scale.pitch)
-    return {detail::kMaxRimGapAlongAxisOnNoisyCreasedRim, detail::kMaxRimGapAlongNormal};
-  return {detail::kMaxRimGapAlongAxis, detail::kMaxRimGapAlongNormal};
+  return report.noise <= detail::kMaxNoiseForWiderAxisLimitInPitches * scale.pitch
+             ? RimGapLimits{detail::kMaxRimGapAlongAxisOnNoisyCreasedRim, strict.along_normal}
+             : strict;
 }
 
 template <typename PointT> void
@@ -1255,12 +1256,14 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
   const bool smooth_normals = report.normal_spread <= detail::kMaxStripNormalSpread;
   // On a noisy rim a face up to twice the reach wide counts as a strip too:
   // its middle points see one of its creases each, not both, and it gave no
-  // plane. Since the view along the axis allows 200 degrees on such rims,
-  // the faces beside it ran past it (a box plate 5.6 pitches thick, jittered,
-  // 0.3 %, a corner ball: the top face 5.7 pitches past the corner, 0.0170
-  // -> 0.0349; with this 0.0173). Fin corners: noisy sum of max errors 0.790
-  // -> 0.766 (jittered 0.5 % 0.0364 -> 0.0214). On clean rims the strict rule
-  // stays: one corner case with PCA normals lost coverage (99.7 -> 98.5 %).
+  // plane. It showed once the view along the axis allowed 200 degrees
+  // (rimGapLimits): the faces beside it ran past it (a box plate 5.6 pitches
+  // thick, jittered, 0.3 %, a corner ball: the top face 5.7 pitches past the
+  // corner, 0.0170 -> 0.0349; with this 0.0173). It holds them on noisier
+  // rims too, where the axis keeps pi: fin corners, noisy sum of max errors
+  // 0.790 -> 0.766 (jittered 0.5 % 0.0364 -> 0.0214). On clean rims the
+  // strict rule stays: one corner case with PCA normals lost coverage
+  // (99.7 -> 98.5 %).
   const bool one_crease_strips = !detail::noiseFree (scale.spacing, report.noise);
   std::vector<Eigen::Vector3f> points, normals;
   std::vector<int> strip;  // rim points between two creases (or next to one, on a noisy rim)

@@ -13,9 +13,12 @@ namespace pcl_holefill
   * needs one side of the surface to be "out").
   *
   * A best-first walk over the k nearest neighbours, from the point highest
-  * along z in each connected part (its normal is made to point up, i.e. out
-  * of a closed object), flips each newly reached normal to agree with the
-  * point it was reached from, following the most reliable links first.
+  * along z in each connected part, flips each newly reached normal to agree
+  * with the points reached before it, following the most reliable links
+  * first. Then each part as a whole is turned outward if it is closed (its
+  * normals point away from its centroid, or, for a thin part such as a
+  * plate or a bowl's shell, the volume they enclose is positive), else
+  * upward (+z).
   * Agreement is the normals' dot product plus a sharp-edge term: across a
   * convex edge each point lies below the other's tangent plane, across a
   * concave one above it, so two faces meeting at a right angle (dot 0) still

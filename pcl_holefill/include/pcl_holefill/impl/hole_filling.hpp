@@ -597,24 +597,33 @@ wideNeighbours (float noise, float spacing)
   return neighboursForNoise (kWideNeighboursPerNoise, noise, spacing, kPcaNeighbours);
 }
 /** Keeps the planes (points and unit normals) that support the rim: at most
-  * kMaxRimPlaneViolations of the other points lie above one, by more than
-  * \a tolerance + \a slope x distance. Every plane of a convex rim does; so
-  * do those of the faces that a convex edge or corner joins to concave or
-  * saddle-shaped parts, whose own planes are left out. */
+  * kMaxRimPlaneViolations of the rim's points \a witnesses (in loop order)
+  * lie above one, by more than \a tolerance + \a slope x distance. Every
+  * plane of a convex rim does; so do those of the faces that a convex edge
+  * or corner joins to concave or saddle-shaped parts, whose own planes are
+  * left out. Every rim point witnesses, also those next to a crease that
+  * give no plane: on a face that curves up towards a crease (fandisk's
+  * channel running into its side face) only they rise above the channel's
+  * planes, which cut the fill off there. A rise runs along the rim: a point
+  * above whose loop neighbours are not (a stray return on the rim, 4
+  * pitches off) does not count. */
 inline void
-keepSupportingPlanes (std::vector<Eigen::Vector3f> &points, std::vector<Eigen::Vector3f> &normals, float tolerance,
-                      float slope)
+keepSupportingPlanes (std::vector<Eigen::Vector3f> &points, std::vector<Eigen::Vector3f> &normals,
+                      const std::vector<Eigen::Vector3f> &witnesses, float tolerance, float slope)
 {
-  std::vector<char> supporting (points.size (), 0);
+  const std::size_t n = witnesses.size ();
+  std::vector<char> supporting (points.size (), 0), above (n, 0);
   for (std::size_t i = 0; i < points.size (); ++i)
   {
-    std::size_t above = 0;
-    for (std::size_t j = 0; j < points.size (); ++j)
+    for (std::size_t j = 0; j < n; ++j)
     {
-      const Eigen::Vector3f d = points[j] - points[i];
-      above += d.dot (normals[i]) > tolerance + slope * d.norm () ? 1 : 0;
+      const Eigen::Vector3f d = witnesses[j] - points[i];
+      above[j] = d.dot (normals[i]) > tolerance + slope * d.norm () ? 1 : 0;
     }
-    supporting[i] = static_cast<float> (above) <= kMaxRimPlaneViolations * static_cast<float> (points.size ());
+    std::size_t rising = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      rising += above[j] && (above[(j + n - 1) % n] || above[(j + 1) % n]) ? 1 : 0;
+    supporting[i] = static_cast<float> (rising) <= kMaxRimPlaneViolations * static_cast<float> (n);
   }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < points.size (); ++i)
@@ -1302,7 +1311,9 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
       std::max (detail::kToleranceInSpacings * scale.spacing, detail::kRimPlaneNoiseSigmas * report.noise);
   const float slope = detail::kRimPlaneSlope + report.normal_spread;
   holdAtRimSidePlanes (surroundings, tolerance, points, normals);
-  detail::keepSupportingPlanes (points, normals, tolerance, slope);
+  std::vector<Eigen::Vector3f> rim_positions, rim_normals;
+  rimPositionsAndNormals (surroundings, rim_positions, rim_normals);
+  detail::keepSupportingPlanes (points, normals, rim_positions, tolerance, slope);
   if (!points.empty ())
     sampler.setRimPlanes (std::move (points), std::move (normals), tolerance, slope);
 }

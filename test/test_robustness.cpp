@@ -470,6 +470,39 @@ fillBallOfVertices (const pcl_holefill::shapes::Shape &mesh, const Cloud &cloud,
   return pcl_holefill::shapes::evaluateFill (mesh, cut, cut_balls, output, h);
 }
 
+/** One ball cut from fandisk's vertices, and what its fill must reach. */
+struct VertexBall
+{
+  Eigen::Vector3d centre;  // unit-cube coordinates
+  double radius;           // spacings
+  double min_coverage, max_error_in_spacings;
+  std::size_t max_outside;
+};
+
+/** Fills each ball of fandisk's vertices alone and checks it against its bounds. */
+void
+expectBallsOfVerticesFilled (const std::vector<VertexBall> &balls)
+{
+  pcl_holefill::shapes::Shape mesh;
+  std::string error;
+  ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
+  const Cloud cloud = corpus::meshVertices (mesh);
+  const double h = pcl_holefill::shapes::meanSpacing (cloud);
+  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
+  for (const auto &c : balls)
+  {
+    std::size_t reports = 0;
+    const auto quality = fillBallOfVertices (mesh, cloud, c.centre, c.radius, h, reports);
+    std::ostringstream name;
+    name << c.centre.transpose () << ", " << c.radius << " spacings";
+    EXPECT_EQ (reports, 1u) << name.str ();
+    EXPECT_TRUE (quality.kept_unchanged) << name.str ();
+    EXPECT_GE (quality.coverage, c.min_coverage) << name.str ();
+    EXPECT_LE (quality.max_error, c.max_error_in_spacings * h) << name.str ();
+    EXPECT_LE (quality.outside, c.max_outside) << name.str ();
+  }
+}
+
 // Holes in fandisk's mesh vertices, on a face next to a wall that meets
 // two faces (a step beside a floor, the foot of its thin plate). The wall's
 // points were labelled concave by the face in front of them and rejected
@@ -515,38 +548,13 @@ TEST (MeshVertices, FaceBesideAWallIsFilled)
 // sheet, 6.6 h out of the ball.
 TEST (MeshVertices, TiltedVertexNormalsBoundOnlyBeyondTheirOwnFace)
 {
-  pcl_holefill::shapes::Shape mesh;
-  std::string error;
-  ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
-  const Cloud cloud = corpus::meshVertices (mesh);
-  const double h = pcl_holefill::shapes::meanSpacing (cloud);
-  struct Case
-  {
-    Eigen::Vector3d centre;  // unit-cube coordinates
-    double radius;           // spacings
-    double min_coverage, max_error_in_spacings;
-    std::size_t max_outside;
-  };
-  const std::vector<Case> cases = {
+  expectBallsOfVerticesFilled ({
       // reached: 57.5 % of the cut vertices covered (before 27.9 %), 1.8 h
       // (the fillet's corner filled sharp), none outside
       {{0.9061, 0.3421, 0.6447}, 9.9488, 0.5, 3.0, 0},
       // reached: 78.5 % (before 74.2 %), 6.8 h (before 10.0 h), farthest
       // filled point 0.9 h outside the ball (before 6.6 h)
-      {{0.5427, 0.1943, 0.7642}, 9.6254, 0.7, 8.0, 0}};
-  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-  for (const auto &c : cases)
-  {
-    std::size_t reports = 0;
-    const auto quality = fillBallOfVertices (mesh, cloud, c.centre, c.radius, h, reports);
-    std::ostringstream name;
-    name << c.centre.transpose () << ", " << c.radius << " spacings";
-    EXPECT_EQ (reports, 1u) << name.str ();
-    EXPECT_TRUE (quality.kept_unchanged) << name.str ();
-    EXPECT_GE (quality.coverage, c.min_coverage) << name.str ();
-    EXPECT_LE (quality.max_error, c.max_error_in_spacings * h) << name.str ();
-    EXPECT_LE (quality.outside, c.max_outside) << name.str ();
-  }
+      {{0.5427, 0.1943, 0.7642}, 9.6254, 0.7, 8.0, 0}});
 }
 
 // Three balls of bench/mesh_vertices_check.py (exact normals) where the
@@ -558,35 +566,12 @@ TEST (MeshVertices, TiltedVertexNormalsBoundOnlyBeyondTheirOwnFace)
 // planes cut the fill off along the crease. Every rim point is asked now.
 TEST (MeshVertices, PlanesOfAFaceThatCurvesUpDoNotBoundTheFill)
 {
-  pcl_holefill::shapes::Shape mesh;
-  std::string error;
-  ASSERT_TRUE (corpus::fandisk (mesh, error)) << error;
-  const Cloud cloud = corpus::meshVertices (mesh);
-  const double h = pcl_holefill::shapes::meanSpacing (cloud);
-  struct Case
-  {
-    Eigen::Vector3d centre;  // unit-cube coordinates
-    double radius;           // spacings
-    double min_coverage;
-  };
   // reached: 100 / 100 / 92.6 % of the cut vertices covered (before 73.0 /
-  // 97.9 / 89.9 %), max errors 0.52 / 0.25 / 0.31 h (before 0.20 / 0.24 / 1.38 h)
-  const std::vector<Case> cases = {{{0.0251, 0.3325, 0.6092}, 8.7152, 0.99},
-                                   {{0.9018, 0.5111, 0.2067}, 7.6069, 0.99},
-                                   {{0.5389, 0.3250, 0.8431}, 7.0746, 0.9}};
-  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-  for (const auto &c : cases)
-  {
-    std::size_t reports = 0;
-    const auto quality = fillBallOfVertices (mesh, cloud, c.centre, c.radius, h, reports);
-    std::ostringstream name;
-    name << c.centre.transpose () << ", " << c.radius << " spacings";
-    EXPECT_EQ (reports, 1u) << name.str ();
-    EXPECT_TRUE (quality.kept_unchanged) << name.str ();
-    EXPECT_GE (quality.coverage, c.min_coverage) << name.str ();
-    EXPECT_LE (quality.max_error, 0.8 * h) << name.str ();
-    EXPECT_EQ (quality.outside, 0u) << name.str ();
-  }
+  // 97.9 / 89.9 %), max errors 0.52 / 0.25 / 0.31 h (before 0.20 / 0.24 /
+  // 1.38 h), none outside
+  expectBallsOfVerticesFilled ({{{0.0251, 0.3325, 0.6092}, 8.7152, 0.99, 0.8, 0},
+                                {{0.9018, 0.5111, 0.2067}, 7.6069, 0.99, 0.8, 0},
+                                {{0.5389, 0.3250, 0.8431}, 7.0746, 0.9, 0.8, 0}});
 }
 
 class ThinSheet : public testing::TestWithParam<std::tuple<double, int>>

@@ -1311,8 +1311,9 @@ HoleFilling<PointT>::keepBelowRimPlanes (detail::ElasticSampler<PointT> &sampler
       std::max (detail::kToleranceInSpacings * scale.spacing, detail::kRimPlaneNoiseSigmas * report.noise);
   const float slope = detail::kRimPlaneSlope + report.normal_spread;
   holdAtRimSidePlanes (surroundings, tolerance, points, normals);
-  std::vector<Eigen::Vector3f> rim_positions, rim_normals;
-  rimPositionsAndNormals (surroundings, rim_positions, rim_normals);
+  std::vector<Eigen::Vector3f> rim_positions;
+  for (const auto i : surroundings.rim)
+    rim_positions.push_back (cloud[i].getVector3fMap ());
   detail::keepSupportingPlanes (points, normals, rim_positions, tolerance, slope);
   if (!points.empty ())
     sampler.setRimPlanes (std::move (points), std::move (normals), tolerance, slope);

@@ -436,6 +436,51 @@ lBlock ()
   return s;
 }
 
+Shape
+boredCube ()
+{
+  Shape s;
+  s.name = "bored cube";
+  s.closed = true;
+  const double bore = 0.22;
+  const int segments = 128;  // a multiple of 8: the square's corners fall on sector edges
+  // The four side faces of the unit cube.
+  for (int axis = 0; axis < 2; ++axis)
+    for (int side = 0; side < 2; ++side)
+    {
+      const int u = 1 - axis;
+      std::vector<V> c;
+      for (const auto &uz : {std::pair<int, int>{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+      {
+        V p = V::Zero ();
+        p[axis] = side;
+        p[u] = uz.first;
+        p[2] = uz.second;
+        c.push_back (p);
+      }
+      V out = V::Zero ();
+      out[axis] = side ? 1.0 : -1.0;
+      addFace (s, c, out);
+    }
+  // Per angular sector: a quad of the bore's wall, and on the bottom and the
+  // top a quad from the bore's circle out to the square along the sector's rays.
+  const auto on_square = [] (double a) -> V {
+    const V ray (std::cos (a), std::sin (a), 0.0);
+    return V (0.5, 0.5, 0.0) + ray * (0.5 / std::max (std::abs (ray.x ()), std::abs (ray.y ())));
+  };
+  for (int i = 0; i < segments; ++i)
+  {
+    const double a = 2.0 * M_PI * i / segments, b = 2.0 * M_PI * (i + 1) / segments, mid = 0.5 * (a + b);
+    const V ca (0.5 + bore * std::cos (a), 0.5 + bore * std::sin (a), 0.0);
+    const V cb (0.5 + bore * std::cos (b), 0.5 + bore * std::sin (b), 0.0);
+    const V up (0.0, 0.0, 1.0);
+    addFace (s, {ca, cb, cb + up, ca + up}, V (-std::cos (mid), -std::sin (mid), 0.0));
+    addFace (s, {ca, cb, on_square (b), on_square (a)}, -up);
+    addFace (s, {ca + up, cb + up, on_square (b) + up, on_square (a) + up}, up);
+  }
+  return s;
+}
+
 bool
 fandisk (Shape &shape, std::string &error)
 {

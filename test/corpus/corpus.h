@@ -76,6 +76,7 @@ Shape torus ();     //!< major radius 0.32, minor 0.14, axis z, meshed finely
 Shape fin ();       //!< a thin plate 0.9 x 0.6 x 0.04: two faces close together
 Shape sheet (double thickness);  //!< 0.9 x 0.6 x thickness, centred at z = 0.5: sheet metal
 Shape lBlock ();    //!< an L-shaped solid: convex and concave edges
+Shape boredCube (); //!< the unit cube with a bore of radius 0.22 along z through its middle
 
 /** \brief fandisk from Debian's libcgal-demo (data.tar.gz), scaled into the
   * unit cube; false when the package is not installed. */

@@ -639,27 +639,14 @@ keepSupportingPlanes (std::vector<Eigen::Vector3f> &points, std::vector<Eigen::V
   normals.resize (kept);
 }
 
-/** Whether every one of the unit \a normals lies within \a min_cosine of their mean. */
-inline bool
-withinOfMean (const std::vector<Eigen::Vector3f> &normals, float min_cosine)
-{
-  Eigen::Vector3f mean = Eigen::Vector3f::Zero ();
-  for (const auto &n : normals)
-    mean += n;
-  if (!(mean.norm () > 0.f))
-    return false;
-  mean.normalize ();
-  return std::all_of (normals.begin (), normals.end (),
-                      [&] (const Eigen::Vector3f &n) { return n.dot (mean) >= min_cosine; });
-}
-
 /** The cosine of the half-angle of (nearly) the narrowest cone around the
-  * unit \a normals: the axis steps towards the normal farthest from it by
-  * shrinking steps (Badoiu and Clarkson's core-set walk for the smallest
-  * enclosing ball, on the sphere). Unlike their mean, the axis does not lean
-  * towards the face that gives more of them. */
+  * unit \a normals: the axis starts at their mean and steps towards the
+  * normal farthest from it by shrinking steps, \a steps times (Badoiu and
+  * Clarkson's core-set walk for the smallest enclosing ball, on the sphere).
+  * One step gives the cone around their mean; more, an axis that does not
+  * lean towards the face that gives more of them. -1 when the mean is 0. */
 inline float
-narrowestConeCosine (const std::vector<Eigen::Vector3f> &normals)
+narrowestConeCosine (const std::vector<Eigen::Vector3f> &normals, int steps)
 {
   Eigen::Vector3f axis = Eigen::Vector3f::Zero ();
   for (const auto &n : normals)
@@ -668,7 +655,7 @@ narrowestConeCosine (const std::vector<Eigen::Vector3f> &normals)
     return -1.f;
   axis.normalize ();
   float best = -1.f;
-  for (int step = 1; step <= kConeSearchSteps; ++step)
+  for (int step = 1; step <= steps; ++step)
   {
     const auto farthest = std::min_element (normals.begin (), normals.end (),
                                             [&] (const Eigen::Vector3f &a, const Eigen::Vector3f &b) {
@@ -1670,9 +1657,9 @@ HoleFilling<PointT>::resumable (const detail::Front &openings, const HoleScale &
       normals.push_back (v.normal);
     }
     const bool strip = detail::loopDiameter (positions) <= scale.rim_radius;
+    const int steps = strip ? detail::kConeSearchSteps : 1;  // 1: the cone around the mean
     if (inside && !normals.empty () &&
-        (detail::withinOfMean (normals, detail::kResumeMinNormalCosine) ||
-         (strip && detail::narrowestConeCosine (normals) >= detail::kResumeMinNormalCosine)))
+        detail::narrowestConeCosine (normals, steps) >= detail::kResumeMinNormalCosine)
       kept.push_back (chain);
   }
   return kept;

@@ -597,6 +597,22 @@ TEST (RimGap, InsideARimItIsUnderHalfATurnAndPastItMore)
   EXPECT_FLOAT_EQ (detail::rimGapAround (Eigen::Vector3f::Zero (), up, {}), static_cast<float> (2.0 * M_PI));
 }
 
+// The closure test's gate (HoleFilling::emptyDiscAt) counts the near
+// neighbours only beside one edge; next to a corner every neighbour.
+TEST (OneOtherFace, BesideAnEdgeYesNextToACornerNo)
+{
+  const Eigen::Vector3f up = Eigen::Vector3f::UnitZ ();
+  const Eigen::Vector3f wall = Eigen::Vector3f::UnitX (), other_wall = Eigen::Vector3f::UnitY ();
+  const Eigen::Vector3f slightly_tilted = Eigen::Vector3f (0.2f, 0.f, 1.f).normalized ();  // 11 degrees
+  const std::vector<Eigen::Vector3f> normals = {up, slightly_tilted, wall, Eigen::Vector3f (1.f, 0.f, 0.3f).normalized (),
+                                                other_wall};
+  const std::vector<int> own_face = {0, 1}, edge = {0, 1, 2, 3}, corner = {0, 2, 4};
+  EXPECT_TRUE (detail::besideOneOtherFace (up, normals.data (), own_face.data (), 2));
+  EXPECT_TRUE (detail::besideOneOtherFace (up, normals.data (), edge.data (), 4));  // the wall's normals 17 degrees apart
+  EXPECT_FALSE (detail::besideOneOtherFace (up, normals.data (), corner.data (), 3));
+  EXPECT_TRUE (detail::besideOneOtherFace (up, normals.data (), nullptr, 0));
+}
+
 TEST (BilateralPreprocessor, DenoisesAPlaneAndKeepsTheRidge)
 {
   Cloud clean = shapes::dihedral ().sample (6000);

@@ -702,7 +702,13 @@ TEST_P (ScanLineNoise, IsMeasuredAndTheHolesClose)
   EXPECT_LE (o.max_noise, 1.3 * sigma);
   EXPECT_GE (o.fill.coverage, 0.99);           // reached: 100 % (was 95.8 to 100 %)
   EXPECT_LE (o.fill.max_error, 2.5 * sigma);  // reached: 0.71 to 1.89 sigma
-  EXPECT_EQ (o.closed_but_open, 0u);
+  // A hole reported closed is covered. Reached: 98.75 % (cube corner: 2 of
+  // 160 samples at 1.50 and 1.53 pitches from the fill, covered meaning
+  // within 1.5), 100 % on the others. Before the closure test's gate counted
+  // the near neighbours only, 99.4 % (1 sample, at 1.79 pitches): the gap
+  // narrowed and split in two, and the 99 % of closed_but_open counts
+  // samples of a ball this small one by one.
+  EXPECT_GE (o.min_closed_coverage, 0.985);
 }
 
 INSTANTIATE_TEST_SUITE_P (SmoothAndSharp, ScanLineNoise, testing::Values (0, 1, 2, 3),
@@ -1030,7 +1036,10 @@ TEST (NormalOrientation, ThinClosedPartsComeOutOutward)
 // corner and on an L-block's concave edge. On the sphere's scan lines the
 // cut came from gaps of the rim itself (up to 3 spacings between scan
 // lines); since those are bridged (ElasticSampler::controlCurve) its front
-// is no longer cut and nothing is left to take up.
+// is no longer cut. Since the closure test's gate counts the near
+// neighbours only away from corners (HoleFilling::emptyDiscAt) it finds one
+// small opening inside the sphere's cap (3 points, 0.67 of the disc across)
+// and takes it up once; coverage is 100 % with and without.
 TEST (Resume, AbandonedPartsOfAHoleAreFilledAndTheReportTellsTheTruth)
 {
   for (const int m : {0, 1, 3})
@@ -1039,7 +1048,7 @@ TEST (Resume, AbandonedPartsOfAHoleAreFilledAndTheReportTellsTheTruth)
     const Outcome o = fillCase (c);
     const double p = corpus::pitch (c.shape, c.points);
     if (m == 1)
-      EXPECT_EQ (o.resumed, 0u) << c.name;  // was 1 before the rim's gaps were bridged
+      EXPECT_LE (o.resumed, 1u) << c.name;  // was 1 before the rim's gaps were bridged, then 0
     else
       EXPECT_GE (o.resumed, 1u) << c.name;
     EXPECT_EQ (o.closed, o.reported) << c.name;
@@ -1068,9 +1077,11 @@ TEST (Resume, AnOpeningAlongAnEdgeIsTakenUpWhateverEachFacesShare)
     unsigned seed;
     double coverage;  //!< bound: reached less a margin (before: 98.0, 94.0, 92.2 %)
   };
-  for (const Sampled &s : {Sampled{Sampling::kRandom, 2, 0.99},   // reached 99.5 %
-                           Sampled{Sampling::kScan, 2, 0.975},    // 98.3 %
-                           Sampled{Sampling::kVoxel, 3, 0.96}})   // 97.1 %
+  // reached 99.7, 99.7, 97.7 % (99.5, 98.3, 97.1 % before the closure
+  // test's gate counted the near neighbours only: the strip's rest is found)
+  for (const Sampled &s : {Sampled{Sampling::kRandom, 2, 0.99},
+                           Sampled{Sampling::kScan, 2, 0.99},
+                           Sampled{Sampling::kVoxel, 3, 0.97}})
   {
     auto c = makeCase (corpus::boredCube (), s.sampling, 0.0, false, false);
     c.seed = s.seed;

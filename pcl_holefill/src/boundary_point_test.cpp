@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_holefill/detail/boundary_point_test.h>
+#include <pcl_holefill/detail/crease_chords.h>
 
 #include <Eigen/Geometry>
 
@@ -207,6 +208,24 @@ sectorBoundaryAngles ()
   return angles;
 }
 }  // namespace
+
+bool
+besideOneOtherFace (const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *unit_normals, const int *ids, int count)
+{
+  const float same_face = sameFaceCosine ();
+  const Eigen::Vector3f *other = nullptr;
+  for (int k = 0; k < count; ++k)
+  {
+    const Eigen::Vector3f &n = unit_normals[ids[k]];
+    if (n.dot (unit_normal) > same_face)
+      continue;
+    if (other == nullptr)
+      other = &n;
+    else if (n.dot (*other) <= same_face)
+      return false;
+  }
+  return true;
+}
 
 float
 rimGapAround (const Eigen::Vector3f &position, const Eigen::Vector3f &normal, const std::vector<Eigen::Vector3f> &rim)

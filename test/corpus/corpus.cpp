@@ -646,10 +646,10 @@ gridOf (const Cloud &cloud, std::vector<Eigen::Vector3f> &positions)
   return grid;
 }
 
-/** Per cut ball: is it covered (>= 99 % of its removed samples within 1.5
-  * pitches of an output point)? */
-std::vector<bool>
-coveredBalls (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
+/** Per cut ball: the share of its removed samples covered (within 1.5
+  * pitches of an output point); 1 for a ball that removed none. */
+std::vector<double>
+ballCoverage (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &output, double p)
 {
   std::vector<Eigen::Vector3f> positions;
   const pcl_holefill::detail::PointGrid grid = gridOf (output, positions);
@@ -666,10 +666,11 @@ coveredBalls (const CutCloud &cut, const std::vector<Ball> &balls, const Cloud &
     grid.nearestK (q.getVector3fMap (), 1, nearest);
     covered[b] += !nearest.empty () && nearest[0].sqr_distance <= 2.25 * p * p ? 1 : 0;
   }
-  std::vector<bool> result (balls.size ());
+  std::vector<double> share (balls.size (), 1.0);
   for (std::size_t b = 0; b < balls.size (); ++b)
-    result[b] = covered[b] >= 0.99 * total[b];
-  return result;
+    if (total[b] > 0)
+      share[b] = static_cast<double> (covered[b]) / static_cast<double> (total[b]);
+  return share;
 }
 
 /** Mean nearest-neighbour distance of the filled points over that of the
@@ -752,7 +753,10 @@ runCase (const Case &c)
     cut.removed = missingSurface (c);
     o.fill.coverage = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p).coverage;
   }
-  const auto covered = coveredBalls (cut, c.holes, output, p);
+  const std::vector<double> share = ballCoverage (cut, c.holes, output, p);
+  std::vector<bool> covered (share.size ());
+  for (std::size_t b = 0; b < share.size (); ++b)
+    covered[b] = share[b] >= 0.99;
   o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
   o.reports_per_ball.assign (c.holes.size (), 0);
   for (const auto &r : filler.getReports ())
@@ -772,6 +776,8 @@ runCase (const Case &c)
       continue;
     ++o.reports_per_ball[b];
     o.closed_but_open += r.closed && !covered[b] ? 1 : 0;
+    if (r.closed)
+      o.min_closed_coverage = std::min (o.min_closed_coverage, share[b]);
     o.open_but_covered += !r.closed && covered[b] ? 1 : 0;
   }
   o.spacing_ratio = fillSpacingRatio (cut, c.holes, output, p);

@@ -161,6 +161,8 @@ struct Outcome
   std::size_t covered_balls = 0;
   /** Reports claiming closed whose nearest cut ball is not covered, and the reverse. */
   std::size_t closed_but_open = 0, open_but_covered = 0;
+  /** The lowest share of a cut ball's removed samples covered where a report about it claims closed. */
+  double min_closed_coverage = 1.0;
   /** Holes whose fill was taken up again from what was left open. */
   std::size_t resumed = 0;
   /** Filled points per removed sample: 1 = the input's density (valid when covered). */

@@ -145,6 +145,13 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
                   const Eigen::Vector3f *positions, const Eigen::Vector3f *unit_normals, const int *ids, int count,
                   float diameter, float test_radius, bool unfold = true, bool over_other_face = false);
 
+/** \brief Whether the \a count neighbours given as \a ids into \a unit_normals
+  * show one face besides the point's own at most: those turned more than
+  * sameFaceCosine from \a unit_normal all lie within it of each other. False
+  * next to a corner (two other faces or more) and on rough normals. */
+bool
+besideOneOtherFace (const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *unit_normals, const int *ids, int count);
+
 /** \brief A point lies on a thin part when at least this many of its k
   * nearest lie on the other side (onOtherSideOfThinPart; one may be a normal
   * flipped by noise) ... */

@@ -146,9 +146,10 @@ emptyDiscTouches (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_norm
                   float diameter, float test_radius, bool unfold = true, bool over_other_face = false);
 
 /** \brief Whether the \a count neighbours given as \a ids into \a unit_normals
-  * show one face besides the point's own at most: those turned more than
-  * sameFaceCosine from \a unit_normal all lie within it of each other. False
-  * next to a corner (two other faces or more) and on rough normals. */
+  * show one face besides the point's own at most: those turned further than
+  * kSameFaceDegrees (crease_chords.h) from \a unit_normal all lie within that
+  * angle of each other. False next to a corner (two other faces or more) and
+  * on rough normals. */
 bool
 besideOneOtherFace (const Eigen::Vector3f &unit_normal, const Eigen::Vector3f *unit_normals, const int *ids, int count);
 

@@ -754,10 +754,9 @@ runCase (const Case &c)
     o.fill.coverage = pcl_holefill::shapes::evaluateFill (c.shape, cut, c.holes, output, p).coverage;
   }
   const std::vector<double> share = ballCoverage (cut, c.holes, output, p);
-  std::vector<bool> covered (share.size ());
+  const auto covered = [&] (std::size_t b) { return share[b] >= 0.99; };  // Outcome::covered_balls
   for (std::size_t b = 0; b < share.size (); ++b)
-    covered[b] = share[b] >= 0.99;
-  o.covered_balls = static_cast<std::size_t> (std::count (covered.begin (), covered.end (), true));
+    o.covered_balls += covered (b) ? 1 : 0;
   o.reports_per_ball.assign (c.holes.size (), 0);
   for (const auto &r : filler.getReports ())
   {
@@ -775,10 +774,10 @@ runCase (const Case &c)
     if (c.holes.empty ())
       continue;
     ++o.reports_per_ball[b];
-    o.closed_but_open += r.closed && !covered[b] ? 1 : 0;
+    o.closed_but_open += r.closed && !covered (b) ? 1 : 0;
     if (r.closed)
       o.min_closed_coverage = std::min (o.min_closed_coverage, share[b]);
-    o.open_but_covered += !r.closed && covered[b] ? 1 : 0;
+    o.open_but_covered += !r.closed && covered (b) ? 1 : 0;
   }
   o.spacing_ratio = fillSpacingRatio (cut, c.holes, output, p);
   o.density = cut.removed.empty () ? 0.0 : static_cast<double> (o.fill.filled) / cut.removed.size ();

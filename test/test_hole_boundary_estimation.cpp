@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <numeric>
 #include <random>
 
 using namespace pcl_holefill;
@@ -450,6 +451,46 @@ TEST (AngularGap, MeasuresAnEmptySectorAndPointsIntoIt)
   }
   EXPECT_LE (detail::largestAngularGap (Eigen::Vector3f::Zero (), Eigen::Vector3f::UnitZ (), all, all_normals).angle,
              static_cast<float> (M_PI) / 2.f + 1e-5f);
+}
+
+// A point of a scan line: its nearest neighbours include points of its own
+// line on both sides, exactly collinear with it, so their directions in the
+// tangent plane agree up to rounding. The gap must not depend on the order
+// the neighbours come in: for some orders the rounding made one of two
+// parallel directions a whole turn past the other, a gap of 2 pi that made
+// the point a rim point (a false hole along a scanned box's edge).
+TEST (AngularGap, ParallelDirectionsOfAScanLineGiveOneGapInAnyOrder)
+{
+  std::mt19937 rng (11);
+  std::uniform_real_distribution<float> jitter (-0.3f, 0.3f);
+  constexpr float kStep = 0.0065f, kLineGap = 4.f * kStep;
+  // The face y = 1 of a box, seen through an estimated, slightly tilted normal.
+  const Eigen::Vector3f point (0.37f, 1.f, 0.61f);
+  const Eigen::Vector3f normal = Eigen::Vector3f (0.0013f, 1.f, -0.0007f).normalized ();
+  std::vector<Eigen::Vector3f> neighbours, normals;
+  for (int line = -1; line <= 1; ++line)
+    for (int k = -4; k <= 4; ++k)
+      if (line != 0 || k != 0)
+      {
+        const float along = kStep * (static_cast<float> (k) + (line != 0 ? jitter (rng) : 0.f));
+        neighbours.emplace_back (point.x () + along, 1.f, point.z () + kLineGap * static_cast<float> (line));
+        normals.push_back (normal);
+      }
+  std::vector<int> order (neighbours.size ());
+  std::iota (order.begin (), order.end (), 0);
+  float smallest = 10.f, largest = 0.f;
+  for (int trial = 0; trial < 500; ++trial)
+  {
+    std::shuffle (order.begin (), order.end (), rng);
+    const float angle =
+        detail::largestAngularGap (point, normal, neighbours.data (), normals.data (), order.data (),
+                                   static_cast<int> (order.size ()))
+            .angle;
+    smallest = std::min (smallest, angle);
+    largest = std::max (largest, angle);
+  }
+  EXPECT_LT (largest, static_cast<float> (M_PI) / 2.f);  // inside the face
+  EXPECT_NEAR (largest, smallest, 1e-5f);
 }
 
 // Sec. 3.3's midpoint refinement: four feature points on a circle of cloud

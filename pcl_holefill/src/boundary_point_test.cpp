@@ -26,14 +26,28 @@ diamondAngle (float x, float y)
   return x < 0.f ? 2.f - y / (-x - y) : 3.f + x / (x - y);
 }
 
-/** A number that grows with the counter-clockwise angle from unit a to unit
-  * b over [0, 2 pi), without trigonometry. */
-inline float
-turnKey (const Eigen::Vector2f &a, const Eigen::Vector2f &b)
+/** Whether the counter-clockwise turn from a to b is under half a turn,
+  * given \a step, b's diamond angle less a's (0..4, a unit per quarter
+  * turn). The sign of the cross product alone cannot tell for about
+  * parallel directions: the neighbours on one scan line lie on one straight
+  * line, their directions equal up to rounding, and for some orders of the
+  * neighbours the rounding put one a whole turn past the other, a 2 pi gap
+  * in the middle of a scanned face (a false hole at a box's edge). Within
+  * a unit of diamond angle the turn is under half a turn, beyond three
+  * units over it. */
+inline bool
+underHalfTurn (const Eigen::Vector2f &a, const Eigen::Vector2f &b, float step)
 {
-  const float cross = a.x () * b.y () - a.y () * b.x ();
+  return step < 1.f || (step <= 3.f && a.x () * b.y () - a.y () * b.x () >= 0.f);
+}
+
+/** A number that grows with the counter-clockwise angle from unit a to unit
+  * b over [0, 2 pi), without trigonometry; \a step as for underHalfTurn. */
+inline float
+turnKey (const Eigen::Vector2f &a, const Eigen::Vector2f &b, float step)
+{
   const float dot = a.dot (b);
-  return cross >= 0.f ? 1.f - dot : 3.f + dot;
+  return underHalfTurn (a, b, step) ? 1.f - dot : 3.f + dot;
 }
 // The disc may lean this far (radians) from the gap's bisector ...
 constexpr float kDiscLeans[] = {0.f, 0.26f, -0.26f, 0.52f, -0.52f, 0.79f, -0.79f};
@@ -162,11 +176,12 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
     return gap;
   }
   // The widest turn between angularly consecutive directions (the last to the first wraps).
+  const auto step_after = [&] (int i) { return i + 1 < count ? order[i + 1] - order[i] : order[0] + 4.f - order[i]; };
   int widest_from = count - 1;
-  float widest_key = count == 1 ? 4.f : turnKey (direction[count - 1], direction[0]);
+  float widest_key = count == 1 ? 4.f : turnKey (direction[count - 1], direction[0], step_after (count - 1));
   for (int i = 0; i + 1 < count; ++i)
   {
-    const float key = turnKey (direction[i], direction[i + 1]);
+    const float key = turnKey (direction[i], direction[i + 1], step_after (i));
     if (key > widest_key)
     {
       widest_key = key;
@@ -175,10 +190,21 @@ largestAngularGap (const Eigen::Vector3f &point, const Eigen::Vector3f &unit_nor
   }
   const Eigen::Vector2f &a = direction[widest_from];
   const Eigen::Vector2f &b = direction[(widest_from + 1) % count];
-  float angle = count == 1 ? static_cast<float> (2.0 * M_PI)
-                           : std::atan2 (a.x () * b.y () - a.y () * b.x (), a.dot (b));
-  if (angle < 0.f)
-    angle += static_cast<float> (2.0 * M_PI);
+  constexpr float kFullTurn = static_cast<float> (2.0 * M_PI);
+  float angle = kFullTurn;
+  if (count > 1)
+  {
+    angle = std::atan2 (a.x () * b.y () - a.y () * b.x (), a.dot (b));
+    if (angle < 0.f)
+      angle += kFullTurn;
+    // About parallel directions: no turn or a whole one, as their order
+    // says (atan2 reads the rounding's side). Elsewhere atan2 is exact enough.
+    const bool under_half = underHalfTurn (a, b, step_after (widest_from));
+    if (under_half && angle > 0.75f * kFullTurn)
+      angle = 0.f;
+    else if (!under_half && angle < 0.25f * kFullTurn)
+      angle = kFullTurn;
+  }
   const float half = 0.5f * angle;
   const Eigen::Vector2f bisector = std::cos (half) * a + std::sin (half) * Eigen::Vector2f (-a.y (), a.x ());
   gap.angle = angle;

@@ -59,6 +59,50 @@ TEST (PointGrid, NearestKMatchesBruteForce)
   }
 }
 
+TEST (PointGrid, EveryPointsNearestKMatchBruteForceWithTiesBrokenById)
+{
+  // Random points, then a lattice (many equal distances) and duplicates
+  // (distance 0 to another point): each point's k nearest, itself left out,
+  // are the brute force's, ties going to the lower id, for 1 and 2 threads.
+  auto points = randomPoints (2000, 4);
+  for (int x = 0; x < 20; ++x)
+    for (int y = 0; y < 20; ++y)
+      points.emplace_back (2.f + 0.01f * x, 0.01f * y, 0.f);
+  for (int d = 0; d < 50; ++d)
+    points.push_back (points[static_cast<std::size_t> (37 * d)]);
+  constexpr int k = 16;
+  const auto less = [] (const PointGrid::Neighbour &a, const PointGrid::Neighbour &b) {
+    return std::tie (a.sqr_distance, a.id) < std::tie (b.sqr_distance, b.id);
+  };
+  std::vector<std::vector<int>> truth (points.size ());
+  for (std::size_t i = 0; i < points.size (); ++i)
+  {
+    std::vector<PointGrid::Neighbour> all;
+    for (std::size_t j = 0; j < points.size (); ++j)
+      if (j != i)
+        all.push_back ({static_cast<int> (j), (points[j] - points[i]).squaredNorm ()});
+    std::partial_sort (all.begin (), all.begin () + k, all.end (), less);
+    for (int m = 0; m < k; ++m)
+      truth[i].push_back (all[static_cast<std::size_t> (m)].id);
+    std::sort (truth[i].begin (), truth[i].end ());
+  }
+  PointGrid grid (PointGrid::suggestCellSize (points, k));
+  grid.build (points, nullptr, 1);
+  for (const int threads : {1, 2})
+  {
+    std::vector<std::vector<int>> found (points.size ());
+    grid.forEachNearestK (k, threads, [&] (int i, const PointGrid::Neighbour *neighbours, int count) {
+      for (int m = 0; m < count; ++m)
+        found[static_cast<std::size_t> (i)].push_back (neighbours[m].id);
+      std::sort (found[static_cast<std::size_t> (i)].begin (), found[static_cast<std::size_t> (i)].end ());
+    });
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < points.size (); ++i)
+      differing += found[i] == truth[i] ? 0 : 1;
+    EXPECT_EQ (differing, 0u) << threads << " threads";
+  }
+}
+
 TEST (PointGrid, RadiusMatchesBruteForceAndGrows)
 {
   auto points = randomPoints (2000, 2);

@@ -58,6 +58,51 @@ keepNearest (std::vector<PointGrid::Neighbour> &neighbours, std::size_t count)
   std::sort (neighbours.begin (), neighbours.end (), lessByDistance);
 }
 
+/** Moves the \a m nearest of \a candidates [0, \a n) (by lessByDistance)
+  * to its front, in no particular order; what follows them is left
+  * unspecified. Needs n > m and every candidate within \a max_sqr (> 0).
+  *
+  * A bucket select: the candidates are counted into shells of equal squared
+  * width (on a surface, of about equal point counts), the shells nearer
+  * than the one that holds the m-th nearest are taken whole, and only that
+  * shell's few candidates are compared. std::nth_element's partition of the
+  * 17 nearest out of about 30 candidates mispredicted branch after branch:
+  * it took 15 % of the detection on 1,000,000 uniformly random samples. */
+void
+selectNearest (PointGrid::Neighbour *candidates, std::size_t n, std::size_t m, float max_sqr,
+               std::vector<PointGrid::Neighbour> &edge)
+{
+  constexpr int kShells = 16;
+  const float scale = static_cast<float> (kShells) / max_sqr;
+  // Monotonic in the squared distance (a product by a positive number
+  // rounds monotonically), so a nearer shell never holds a farther point.
+  const auto shell = [scale] (float sqr) { return std::min (static_cast<int> (sqr * scale), kShells - 1); };
+  std::size_t count[kShells] = {};
+  for (std::size_t i = 0; i < n; ++i)
+    ++count[shell (candidates[i].sqr_distance)];
+  int edge_shell = 0;
+  std::size_t before = 0;
+  while (before + count[edge_shell] < m)  // ends: the shells hold n > m candidates
+    before += count[edge_shell++];
+  // Without branches: which shell a candidate falls in is a coin toss.
+  // One slot more than the shell holds: the candidates of other shells are
+  // written there and overwritten.
+  edge.resize (count[edge_shell] + 1);
+  std::size_t kept = 0, on_edge = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const PointGrid::Neighbour c = candidates[i];
+    const int s = shell (c.sqr_distance);
+    candidates[kept] = c;  // kept <= i: nothing unread is overwritten
+    kept += s < edge_shell ? 1 : 0;
+    edge[on_edge] = c;
+    on_edge += s == edge_shell ? 1 : 0;
+  }
+  edge.pop_back ();
+  std::sort (edge.begin (), edge.end (), lessByDistance);
+  std::copy (edge.begin (), edge.begin () + static_cast<std::ptrdiff_t> (m - before), candidates + before);
+}
+
 /** std::merge of the sorted ranges [a, middle) and [middle, end) into \a out,
   * its output cut into \a threads parts along the merge path: part t takes
   * the first elements of each range that the serial merge would put in its
@@ -89,6 +134,18 @@ mergeInParallel (const T *a, const T *middle, const T *end, T *out, int threads,
     const std::ptrdiff_t i0 = split (k0), i1 = split (k1);
     std::merge (a + i0, a + i1, middle + (k0 - i0), middle + (k1 - i1), out + k0, less);
   }
+}
+
+/** Asks for the cache line at \a address ahead of its use (a hint; nothing
+  * where the compiler has no such builtin). */
+inline void
+prefetch (const void *address)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch (address);
+#else
+  (void) address;
+#endif
 }
 
 /** One cell coordinate of a key made by PointGrid::keyOf (\a shift 42, 21 or 0). */
@@ -361,12 +418,22 @@ PointGrid::collectShell (int cx, int cy, int cz, int ring, const Eigen::Vector3f
         const int index = findCell (keyOf (ix, iy, iz));
         if (index < 0)
           continue;
-        cell (index).forEach ([&] (const Entry &e) {
+        // Written without a branch into a buffer that only grows, then the
+        // points within appended: on a surface a third of a cell's points
+        // are, and the branch that chose them mispredicted (a search of the
+        // fill's radius reads about 700 points).
+        thread_local std::vector<Neighbour> scratch;
+        const CellSpan span = cell (index);
+        if (scratch.size () < span.bulk_count + span.extra_count)
+          scratch.resize (span.bulk_count + span.extra_count);
+        std::size_t kept = 0;
+        span.forEach ([&] (const Entry &e) {
           const float dx = e.x - query.x (), dy = e.y - query.y (), dz = e.z - query.z ();
           const float d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 <= max_sqr)
-            out.push_back ({e.id, d2});
+          scratch[kept] = {e.id, d2};
+          kept += d2 <= max_sqr ? 1 : 0;
         });
+        out.insert (out.end (), scratch.begin (), scratch.begin () + static_cast<std::ptrdiff_t> (kept));
       }
     }
   }
@@ -394,9 +461,13 @@ PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour>
   // farther than whole cells. With cells of a search radius (the fill's),
   // most nearest-point queries end in their own cell instead of reading 27.
   const float margin = faceMargin (query.x (), query.y (), query.z (), cx, cy, cz);
+  // Once k points are in hand, the k-th nearest so far bounds the search:
+  // the next shell's cells beyond it are not looked up (a shell of 2 cells
+  // has 98, and most lie outside that ball).
+  float bound = inf;
   for (int ring = 0; ring <= kMaxRings; ++ring)
   {
-    collectShell (cx, cy, cz, ring, query, inf, result);
+    collectShell (cx, cy, cz, ring, query, bound, result);
     if (static_cast<int> (result.size ()) >= k)
     {
       // Every point within ring cells and the margin of the query has been seen.
@@ -407,6 +478,7 @@ PointGrid::nearestK (const Eigen::Vector3f &query, int k, std::vector<Neighbour>
         keepNearest (result, static_cast<std::size_t> (k));
         return;
       }
+      bound = result[k - 1].sqr_distance;
     }
   }
   nearestKAmongCells (query, static_cast<std::size_t> (k), result);
@@ -471,21 +543,30 @@ PointGrid::forEachNearestK (int k, int threads,
     std::vector<Neighbour> candidates;
     std::vector<Neighbour> fallback;
     std::vector<Entry> own;  // the cell's points; one buffer per thread, reused
+    std::vector<Neighbour> edge;
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (cell_keys_.size ()); ++c)
     {
       const int cx = decode (cell_keys_[c], 42), cy = decode (cell_keys_[c], 21), cz = decode (cell_keys_[c], 0);
       block.clear ();
-      for (int ix = cx - 1; ix <= cx + 1; ++ix)
-        for (int iy = cy - 1; iy <= cy + 1; ++iy)
-          for (int iz = cz - 1; iz <= cz + 1; ++iz)
-          {
-            const int index = findCell (keyOf (ix, iy, iz));
-            if (index >= 0)
-              cell (index).forEach ([&block] (const Entry &e) { block.push_back (e); });
-          }
+      // The 27 lookups miss the cache in a table of a million cells; asked
+      // for all at once first, they wait for memory together.
+      CellKey keys[27];
+      for (int b = 0; b < 27; ++b)
+      {
+        keys[b] = keyOf (cx - 1 + b / 9, cy - 1 + b / 3 % 3, cz - 1 + b % 3);
+        prefetch (&table_[mix (keys[b]) & (table_.size () - 1)]);
+      }
+      for (const CellKey key : keys)
+      {
+        const int index = findCell (key);
+        if (index >= 0)
+          cell (index).forEach ([&block] (const Entry &e) { block.push_back (e); });
+      }
       own.clear ();
       cell (static_cast<int> (c)).forEach ([&own] (const Entry &e) { own.push_back (e); });
+      candidates.resize (block.size ());
+      const auto is_self = [] (int id) { return [id] (const Neighbour &n) { return n.id == id; }; };
       for (const Entry &self : own)
       {
         // Every point nearer to self than the block's nearest face lies in
@@ -499,7 +580,6 @@ PointGrid::forEachNearestK (int k, int threads,
         // instruction count.
         const float reach = cell_size_ + faceMargin (self.x, self.y, self.z, cx, cy, cz);
         const float inner = reach * reach;
-        candidates.resize (block.size ());
         std::size_t near_count = 0;
         for (const Entry &e : block)
         {
@@ -511,21 +591,15 @@ PointGrid::forEachNearestK (int k, int threads,
         const Eigen::Vector3f p (self.x, self.y, self.z);
         if (near_count > static_cast<std::size_t> (k))
         {
-          candidates.resize (near_count);
           if (near_count > static_cast<std::size_t> (k) + 1)
-            std::nth_element (candidates.begin (), candidates.begin () + k, candidates.end (), lessByDistance);
-          candidates.resize (k + 1);
-          candidates.erase (std::remove_if (candidates.begin (), candidates.end (),
-                                            [&self] (const Neighbour &n) { return n.id == self.id; }),
-                            candidates.end ());
-          candidates.resize (std::min<std::size_t> (candidates.size (), k));
-          visit (self.id, candidates.data (), static_cast<int> (candidates.size ()));
+            selectNearest (candidates.data (), near_count, static_cast<std::size_t> (k) + 1, inner, edge);
+          // The k + 1 nearest hold self unless k + 1 copies of it came first.
+          const auto kept = std::remove_if (candidates.begin (), candidates.begin () + (k + 1), is_self (self.id));
+          visit (self.id, candidates.data (), std::min (static_cast<int> (kept - candidates.begin ()), k));
           continue;
         }
         nearestK (p, k + 1, fallback);
-        fallback.erase (std::remove_if (fallback.begin (), fallback.end (),
-                                        [&self] (const Neighbour &n) { return n.id == self.id; }),
-                        fallback.end ());
+        fallback.erase (std::remove_if (fallback.begin (), fallback.end (), is_self (self.id)), fallback.end ());
         if (static_cast<int> (fallback.size ()) > k)
           fallback.resize (k);
         visit (self.id, fallback.data (), static_cast<int> (fallback.size ()));

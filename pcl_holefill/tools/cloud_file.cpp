@@ -5,10 +5,8 @@
 #include "cloud_file.h"
 
 #include "cloud_reader.h"
+#include "cloud_writer.h"
 #include "text_cloud.h"
-
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
 
 #include <algorithm>
 #include <cctype>
@@ -60,24 +58,14 @@ bool
 saveCloud (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string &error)
 {
   const std::string format = cloudFormat (path);
-  int status = -1;
   if (format == "pcd")
-    status = pcl::io::savePCDFile (path, cloud, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), true);
-  else if (format == "ply")
-    status = pcl::io::savePLYFile (path, cloud, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), true);
-  else if (format == "text")
+    return writePcd (path, cloud, error);
+  if (format == "ply")
+    return writePly (path, cloud, error);
+  if (format == "text")
     return writeText (path, cloud, error);
-  else
-  {
-    error = unknownFormatMessage (path);
-    return false;
-  }
-  if (status < 0)
-  {
-    error = "cannot write '" + path + "'";
-    return false;
-  }
-  return true;
+  error = unknownFormatMessage (path);
+  return false;
 }
 
 }  // namespace pcl_holefill_tool

@@ -5,7 +5,6 @@
 #include "cloud_reader.h"
 
 #include <pcl/common/io.h>
-#include <pcl/io/lzf.h>
 
 #include <algorithm>
 #include <cctype>
@@ -26,6 +25,49 @@ namespace
 constexpr std::size_t kMaxHeader = 64 * 1024;
 constexpr std::uint64_t kMaxPoints = 1ULL << 31;
 constexpr std::uint64_t kMaxBytes = 16ULL << 30;
+
+/** LZF decompression (the format of PCD's binary_compressed, Marc Lehmann's
+  * liblzf): \a in of \a in_size bytes into \a out of \a out_size; the
+  * number of bytes written, or 0 if the data is not LZF or does not fit. A
+  * control byte under 32 starts a run of that many literal bytes plus one;
+  * any other is a back reference, its top 3 bits the length less 2 (7:
+  * one more byte follows, added), its low 5 bits and the next byte the
+  * distance less 1. Every read and every copy is checked against the ends. */
+std::size_t
+lzfDecompress (const std::uint8_t *in, std::size_t in_size, std::uint8_t *out, std::size_t out_size)
+{
+  std::size_t ip = 0, op = 0;
+  while (ip < in_size)
+  {
+    const unsigned control = in[ip++];
+    if (control < 32)
+    {
+      const std::size_t literal = control + 1;
+      if (ip + literal > in_size || op + literal > out_size)
+        return 0;
+      std::memcpy (out + op, in + ip, literal);
+      ip += literal;
+      op += literal;
+      continue;
+    }
+    std::size_t length = control >> 5;
+    if (length == 7)
+    {
+      if (ip >= in_size)
+        return 0;
+      length += in[ip++];
+    }
+    length += 2;
+    if (ip >= in_size)
+      return 0;
+    const std::size_t distance = ((static_cast<std::size_t> (control & 0x1f) << 8) | in[ip++]) + 1;
+    if (distance > op || op + length > out_size)
+      return 0;
+    for (std::size_t k = 0; k < length; ++k, ++op)
+      out[op] = out[op - distance];  // byte by byte: a reference may overlap what it writes
+  }
+  return op;
+}
 
 /** The whole file (bounded by kMaxBytes). */
 bool
@@ -274,7 +316,8 @@ readPcdCompressed (const std::string &bytes, std::size_t body, const std::vector
   }
   std::vector<char> plain (packed[1]);
   if (packed[1] > 0 &&
-      pcl::lzfDecompress (bytes.data () + body + sizeof (packed), packed[0], plain.data (), packed[1]) != packed[1])
+      lzfDecompress (reinterpret_cast<const std::uint8_t *> (bytes.data ()) + body + sizeof (packed), packed[0],
+                     reinterpret_cast<std::uint8_t *> (plain.data ()), packed[1]) != packed[1])
   {
     reason = "the compressed data does not decompress";
     return false;

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include "demo.h"
+#include "cloud_writer.h"
 
 #include "render.h"
 
@@ -10,7 +11,7 @@
 #include "shapes.h"
 
 #include <pcl/common/io.h>
-#include <pcl/io/ply_io.h>
+#include <pcl/conversions.h>
 
 #include <chrono>
 #include <cstdio>
@@ -83,9 +84,12 @@ runDemo (const std::string &directory, bool quiet)
         coloured[i].b = static_cast<std::uint8_t> (col.z ());
       }
       const std::string ply = directory + "/demo_" + c.shape.name + "_" + name + ".ply";
-      if (pcl::io::savePLYFileBinary (ply, coloured) < 0)
+      pcl::PCLPointCloud2 columns;
+      pcl::toPCLPointCloud2 (coloured, columns);
+      std::string error;
+      if (!writePly (ply, columns, error))
       {
-        std::fprintf (stderr, "pcl_holefill: cannot write '%s'\n", ply.c_str ());
+        std::fprintf (stderr, "pcl_holefill: %s\n", error.c_str ());
         return 1;
       }
       row.push_back (renderSplats (splats (output, cut.kept.size ()), view, 320));

@@ -67,7 +67,7 @@ keepNearest (std::vector<PointGrid::Neighbour> &neighbours, std::size_t count)
   * than the one that holds the m-th nearest are taken whole, and only that
   * shell's few candidates are compared. std::nth_element's partition of the
   * 17 nearest out of about 30 candidates mispredicted branch after branch:
-  * it took 15 % of the detection on 1,000,000 uniformly random samples. */
+  * it took a fifth of the detection on 1,000,000 uniformly random samples. */
 void
 selectNearest (PointGrid::Neighbour *candidates, std::size_t n, std::size_t m, float max_sqr,
                std::vector<PointGrid::Neighbour> &edge)

@@ -5,6 +5,7 @@
 #include "cloud_writer.h"
 
 #include <pcl/PCLPointField.h>
+#include <pcl/common/io.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -20,23 +21,7 @@ namespace
 std::size_t
 sizeOf (std::uint8_t datatype)
 {
-  switch (datatype)
-  {
-  case pcl::PCLPointField::INT8:
-  case pcl::PCLPointField::UINT8:
-    return 1;
-  case pcl::PCLPointField::INT16:
-  case pcl::PCLPointField::UINT16:
-    return 2;
-  case pcl::PCLPointField::INT32:
-  case pcl::PCLPointField::UINT32:
-  case pcl::PCLPointField::FLOAT32:
-    return 4;
-  case pcl::PCLPointField::FLOAT64:
-    return 8;
-  default:
-    return 0;
-  }
+  return static_cast<std::size_t> (std::max (pcl::getFieldSize (datatype), 0));
 }
 
 /** The fields in the order of their offsets, unknown types and '_' padding left out. */
@@ -93,23 +78,6 @@ writeFile (const std::string &path, const std::string &header, const std::uint8_
   return true;
 }
 
-char
-pcdType (std::uint8_t datatype)
-{
-  switch (datatype)
-  {
-  case pcl::PCLPointField::FLOAT32:
-  case pcl::PCLPointField::FLOAT64:
-    return 'F';
-  case pcl::PCLPointField::INT8:
-  case pcl::PCLPointField::INT16:
-  case pcl::PCLPointField::INT32:
-    return 'I';
-  default:
-    return 'U';
-  }
-}
-
 const char *
 plyType (std::uint8_t datatype)
 {
@@ -129,8 +97,10 @@ plyType (std::uint8_t datatype)
     return "uint";
   case pcl::PCLPointField::FLOAT64:
     return "double";
-  default:
+  case pcl::PCLPointField::FLOAT32:
     return "float";
+  default:
+    return nullptr;  // PLY has no 64-bit integers and no bool
   }
 }
 
@@ -170,7 +140,7 @@ writePcd (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string
       padding (f.offset - at);
     names << " " << f.name;
     sizes << " " << sizeOf (f.datatype);
-    types << " " << pcdType (f.datatype);
+    types << " " << pcl::getFieldType (f.datatype);
     counts << " " << f.count;
     at = f.offset + sizeOf (f.datatype) * f.count;
   }
@@ -187,9 +157,12 @@ writePcd (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string
 bool
 writePly (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string &error)
 {
-  const std::vector<pcl::PCLPointField> fields = storedFields (cloud);
+  std::vector<pcl::PCLPointField> fields = storedFields (cloud);
   if (!checkCloud (cloud, fields, error))
     return false;
+  fields.erase (std::remove_if (fields.begin (), fields.end (),
+                                [] (const auto &f) { return !isPackedColour (f) && !plyType (f.datatype); }),
+                fields.end ());
   const std::uint64_t points = static_cast<std::uint64_t> (cloud.width) * cloud.height;
   std::ostringstream header;
   header << "ply\nformat " << (bigEndianMachine () ? "binary_big_endian" : "binary_little_endian")

@@ -25,7 +25,8 @@ writePcd (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string
   * PLY file in the machine's byte order: each field a property of its type,
   * normal_x, normal_y, normal_z as nx, ny, nz, a packed rgb (or rgba) as
   * uchar red, green, blue (and alpha), a field of several values as a
-  * list, '_' padding left out. The names readPly () gives back. */
+  * list, '_' padding and the types PLY lacks (64-bit integers, bool) left
+  * out. The names readPly () gives back. */
 bool
 writePly (const std::string &path, const pcl::PCLPointCloud2 &cloud, std::string &error);
 

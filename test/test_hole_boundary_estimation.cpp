@@ -493,6 +493,63 @@ TEST (AngularGap, ParallelDirectionsOfAScanLineGiveOneGapInAnyOrder)
   EXPECT_NEAR (largest, smallest, 1e-5f);
 }
 
+// The detection reads only gaps wider than its angle threshold, and proves
+// most narrower ones so from the sectors their neighbours occupy, without
+// sorting. Against the full measure on random neighbourhoods (3 to 24
+// neighbours, tilted normals so that some are unfolded, some with one
+// sector emptied to about the threshold): every gap wider than the
+// threshold comes back the same, every narrower one no wider.
+TEST (AngularGap, ReadingOnlyWideGapsKeepsEveryWideGapExact)
+{
+  std::mt19937 rng (5);
+  std::uniform_real_distribution<float> unit (0.f, 1.f);
+  const Eigen::Vector3f point (0.2f, -0.1f, 0.4f);
+  const Eigen::Vector3f normal = Eigen::Vector3f (0.1f, -0.2f, 1.f).normalized ();
+  const Eigen::Vector3f u = normal.unitOrthogonal (), v = normal.cross (u);
+  int proven = 0, wide = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const float threshold = trial % 2 == 0 ? static_cast<float> (M_PI / 2.0) : 2.f;
+    const int count = 3 + static_cast<int> (unit (rng) * 22.f);
+    const float empty_from = 2.f * static_cast<float> (M_PI) * unit (rng);
+    const float empty_width = trial % 3 == 0 ? threshold + 0.1f * (unit (rng) - 0.5f) : 0.f;
+    std::vector<Eigen::Vector3f> positions, normals;
+    while (static_cast<int> (positions.size ()) < count)
+    {
+      const float a = 2.f * static_cast<float> (M_PI) * unit (rng);
+      if (std::remainder (a - empty_from - 0.5f * empty_width, 2.f * static_cast<float> (M_PI)) * 2.f <
+              empty_width &&
+          std::remainder (a - empty_from - 0.5f * empty_width, 2.f * static_cast<float> (M_PI)) * 2.f > -empty_width)
+        continue;
+      const float r = 0.5f + unit (rng);
+      const float height = unit (rng) < 0.3f ? 0.4f * (unit (rng) - 0.5f) : 0.f;
+      positions.push_back (point + r * (std::cos (a) * u + std::sin (a) * v) + height * normal);
+      normals.push_back (height != 0.f ? Eigen::Vector3f (normal + (unit (rng) - 0.5f) * u).normalized () : normal);
+    }
+    std::vector<int> ids (positions.size ());
+    std::iota (ids.begin (), ids.end (), 0);
+    const detail::AngularGap exact =
+        detail::largestAngularGap (point, normal, positions.data (), normals.data (), ids.data (), count);
+    const detail::AngularGap read =
+        detail::angularGapOver (threshold, point, normal, positions.data (), normals.data (), ids.data (), count);
+    if (exact.angle > threshold)
+    {
+      ++wide;
+      ASSERT_EQ (read.angle, exact.angle) << "trial " << trial;
+      ASSERT_TRUE (read.direction.isApprox (exact.direction)) << "trial " << trial;
+    }
+    else
+    {
+      ASSERT_LE (read.angle, threshold) << "trial " << trial;
+      proven += read.angle == threshold && exact.angle < threshold && exact.angle > static_cast<float> (M_PI / 2.0)
+                    ? 1
+                    : 0;
+    }
+  }
+  EXPECT_GT (wide, 2000);
+  EXPECT_GT (proven, 500);  // the sector proof decided narrower gaps (889 of them)
+}
+
 // Sec. 3.3's midpoint refinement: four feature points on a circle of cloud
 // points; the refined loop takes the cloud point nearest to each midpoint,
 // recursively, so it follows the circle in order.

@@ -432,7 +432,8 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
           d2[count++] = all_d2[j];
         }
       return count > 0
-                 ? detail::largestAngularGap (positions_[i], normal, positions_.data (), normals_.data (), ids, count)
+                 ? detail::angularGapOver (angle_threshold_, positions_[i], normal, positions_.data (),
+                                           normals_.data (), ids, count)
                  : detail::AngularGap{};
     };
     detail::AngularGap gap = own_side (normals_[i]);

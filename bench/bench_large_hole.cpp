@@ -179,8 +179,11 @@ main (int argc, char **argv)
   {
     // The yardstick process of printCommandRow.
     Cloud::Ptr cloud (new Cloud);
-    if (pcl::io::loadPCDFile (argv[2], *cloud) != 0)
+    if (pcl::io::loadPCDFile (argv[2], *cloud) != 0 || cloud->empty ())
+    {
+      std::fprintf (stderr, "%s: no points read from '%s'\n", argv[0], argv[2]);
       return 1;
+    }
     bench::pclNormals (cloud, 2);
     return 0;
   }

@@ -99,7 +99,7 @@ ElasticSampler<PointT>::optimisePosition (Eigen::Vector3f &position, const Eigen
   // (it moves along its normal by a fraction of r): the searches were a
   // quarter of the fill's time.
   const float slack = kGatherSlack * propagation_.getRadius ();
-  Neighbourhood wider;
+  thread_local Neighbourhood wider;  // its buffers kept from call to call
   Eigen::Vector3f p = position, gathered_at = position;
   propagation_.gatherNeighbourhood (gathered_at, wider, propagation_.getRadius () + slack);
   const auto gatherAround = [&] (const Eigen::Vector3f &q) {
@@ -150,7 +150,7 @@ ElasticSampler<PointT>::signOfMeanHeight (int index, const Eigen::Vector3f *towa
   const Eigen::Vector3f centre = q.getVector3fMap ();
   const Eigen::Vector3f normal = q.getNormalVector3fMap ().normalized ();
   const Eigen::Vector3f side = towards ? Eigen::Vector3f (*towards - centre) : Eigen::Vector3f::Zero ();
-  Neighbourhood neighbours;
+  thread_local Neighbourhood neighbours;  // its buffers kept from call to call
   propagation_.gatherNeighbourhood (centre, neighbours, constraintReach ());
   float total = 0.f, offset = 0.f;
   for (std::size_t i = 0; i < neighbours.size (); ++i)
@@ -280,7 +280,7 @@ template <typename PointT> typename ElasticSampler<PointT>::Verdict
 ElasticSampler<PointT>::place (Eigen::Vector3f &position, const Eigen::Vector3f &origin,
                                const Eigen::Vector3f &reference_normal, Eigen::Vector3f &normal) const
 {
-  Neighbourhood around;
+  thread_local Neighbourhood around;  // its buffers kept from call to call
   if (!optimisePosition (position, reference_normal, normal, around))
     return Verdict::kUnsupported;
   if (bound_radius_ > 0.f && (position - bound_centre_).norm () > bound_radius_)

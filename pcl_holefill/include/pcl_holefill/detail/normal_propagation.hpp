@@ -43,8 +43,9 @@ NormalPropagation<PointT>::gatherNeighbourhood (const Eigen::Vector3f &position,
   neighbours.clear ();
   PointT query;
   query.getVector3fMap () = position;
-  pcl::Indices found;
-  std::vector<float> sqr_distances;
+  // Kept from call to call: allocating them was a tenth of the fill.
+  thread_local pcl::Indices found;
+  thread_local std::vector<float> sqr_distances;
   search_->radiusSearch (query, radius > 0.f ? radius : radius_, found, sqr_distances);
   for (const auto i : found)
   {

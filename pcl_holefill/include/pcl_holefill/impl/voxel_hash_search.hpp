@@ -85,7 +85,7 @@ template <typename PointT> int
 VoxelHashSearch<PointT>::radiusSearch (const PointT &point, double radius, pcl::Indices &k_indices,
                                        std::vector<float> &k_sqr_distances, unsigned int max_nn) const
 {
-  std::vector<detail::PointGrid::Neighbour> found;
+  thread_local std::vector<detail::PointGrid::Neighbour> found;  // kept from call to call
   grid_.withinRadius (point.getVector3fMap (), static_cast<float> (radius), found, max_nn);
   if (sorted_results_ && max_nn == 0)
     std::sort (found.begin (), found.end (), [] (const auto &a, const auto &b) {

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include "cloud_reader.h"
+#include "ply_types.h"
 
 #include <pcl/common/io.h>
 
@@ -413,17 +414,10 @@ struct PlyProperty
 std::uint8_t
 plyDatatype (const std::string &type)
 {
-  static const std::map<std::string, std::uint8_t> types{
-      {"char", pcl::PCLPointField::INT8},     {"int8", pcl::PCLPointField::INT8},
-      {"uchar", pcl::PCLPointField::UINT8},   {"uint8", pcl::PCLPointField::UINT8},
-      {"short", pcl::PCLPointField::INT16},   {"int16", pcl::PCLPointField::INT16},
-      {"ushort", pcl::PCLPointField::UINT16}, {"uint16", pcl::PCLPointField::UINT16},
-      {"int", pcl::PCLPointField::INT32},     {"int32", pcl::PCLPointField::INT32},
-      {"uint", pcl::PCLPointField::UINT32},   {"uint32", pcl::PCLPointField::UINT32},
-      {"float", pcl::PCLPointField::FLOAT32}, {"float32", pcl::PCLPointField::FLOAT32},
-      {"double", pcl::PCLPointField::FLOAT64}, {"float64", pcl::PCLPointField::FLOAT64}};
-  const auto it = types.find (type);
-  return it == types.end () ? 0 : it->second;
+  for (const PlyType &t : kPlyTypes)
+    if (type == t.name || type == t.sized_name)
+      return t.datatype;
+  return 0;
 }
 
 /** Reads one binary value as a double, swapping bytes for big-endian files. */

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include "cloud_writer.h"
+#include "ply_types.h"
 
 #include <pcl/PCLPointField.h>
 #include <pcl/common/io.h>
@@ -78,30 +79,14 @@ writeFile (const std::string &path, const std::string &header, const std::uint8_
   return true;
 }
 
+/** PLY's name of \a datatype; null for the types PLY lacks. */
 const char *
 plyType (std::uint8_t datatype)
 {
-  switch (datatype)
-  {
-  case pcl::PCLPointField::INT8:
-    return "char";
-  case pcl::PCLPointField::UINT8:
-    return "uchar";
-  case pcl::PCLPointField::INT16:
-    return "short";
-  case pcl::PCLPointField::UINT16:
-    return "ushort";
-  case pcl::PCLPointField::INT32:
-    return "int";
-  case pcl::PCLPointField::UINT32:
-    return "uint";
-  case pcl::PCLPointField::FLOAT64:
-    return "double";
-  case pcl::PCLPointField::FLOAT32:
-    return "float";
-  default:
-    return nullptr;  // PLY has no 64-bit integers and no bool
-  }
+  for (const PlyType &t : kPlyTypes)
+    if (t.datatype == datatype)
+      return t.name;
+  return nullptr;
 }
 
 bool

@@ -15,10 +15,11 @@ namespace pcl_holefill_tool
 /** \brief Normals for a cloud that has none, as the command and the Python
   * module give them: PCL NormalEstimationOMP over k = 16 nearest neighbours,
   * or more on a noisy cloud (normalNeighboursForNoise of the noise that the
-  * first pass measures), then consistently oriented
+  * first pass measures), on a clean cloud refitted at creases
+  * (refitAtCreases), then consistently oriented
   * (pcl_holefill::orientNormalsConsistently), then refitted where they
-  * reached another sheet (refitAcrossSheets). Non-finite points get NaN
-  * normals. Returns the k used. */
+  * reached another sheet (refitAcrossSheets, but for those refitted at
+  * creases). Non-finite points get NaN normals. Returns the k used. */
 int
 estimateOrientedNormals (pcl::PointCloud<pcl::PointNormal> &cloud, unsigned int threads);
 
@@ -26,11 +27,24 @@ estimateOrientedNormals (pcl::PointCloud<pcl::PointNormal> &cloud, unsigned int 
   * neighbours may have reached another sheet of a thin part: those of a
   * surface variation (\a variation, lambda_0 / sum, per point) well above
   * the cloud's median, on their neighbours (in \a xyz, through \a search)
-  * whose normals face their own way. Returns how many were refitted. */
+  * whose normals face their own way, but for the points \a skip marks (1).
+  * Returns how many were refitted. */
 std::size_t
 refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointCloud<pcl::PointXYZ> &xyz,
                    const pcl::search::Search<pcl::PointXYZ> &search, const std::vector<float> &variation, int k,
-                   unsigned int threads);
+                   unsigned int threads, const std::vector<char> &skip = {});
+
+/** \brief Refits the normals of \a cloud whose PCA over \a k neighbours
+  * reached round a crease (a surface variation well above the median, as
+  * for refitAcrossSheets) on the neighbours of the point's own face: the
+  * plane through the point that the most neighbours lie on (within a
+  * tolerance of a share of the pitch, or of \a noise_in_pitches), if it
+  * holds clearly more of them than the PCA plane. Returns which were
+  * refitted (1). */
+std::vector<char>
+refitAtCreases (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointCloud<pcl::PointXYZ> &xyz,
+                const pcl::search::Search<pcl::PointXYZ> &search, const std::vector<float> &variation, int k,
+                float noise_in_pitches, unsigned int threads);
 
 /** The noise of a cloud across its surface, in sampling pitches (sqrt of
   * the area per point), as PCA shows it at the median neighbourhood of

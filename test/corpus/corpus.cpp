@@ -437,6 +437,44 @@ lBlock ()
 }
 
 Shape
+starPrism ()
+{
+  Shape s;
+  s.name = "star prism";
+  s.closed = true;
+  // Not among models (): made to test orientation across acute edges (the
+  // tips' 44 degrees), after the corpus's figures were taken.
+  constexpr int tips = 5;
+  const double z0 = 0.35, z1 = 0.65;
+  std::vector<V> outline;  // counter-clockwise seen from +z, tip first
+  for (int i = 0; i < 2 * tips; ++i)
+  {
+    const double a = M_PI / 2 + i * M_PI / tips, r = i % 2 == 0 ? 0.45 : 0.2;
+    outline.emplace_back (0.5 + r * std::cos (a), 0.5 + r * std::sin (a), 0.0);
+  }
+  const std::size_t n = outline.size ();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const V a = outline[i], b = outline[(i + 1) % n];
+    const V out = V (b.y () - a.y (), -(b.x () - a.x ()), 0.0).normalized ();
+    addFace (s, {a + V (0, 0, z0), b + V (0, 0, z0), b + V (0, 0, z1), a + V (0, 0, z1)}, out);
+  }
+  // The ends as convex pieces: each tip's triangle and the pentagon of the notches.
+  for (const double z : {z0, z1})
+  {
+    const V out (0.0, 0.0, z == z0 ? -1.0 : 1.0), up (0.0, 0.0, z);
+    std::vector<V> pentagon;
+    for (std::size_t i = 0; i < n; i += 2)
+    {
+      addFace (s, {outline[(i + n - 1) % n] + up, outline[i] + up, outline[i + 1] + up}, out);
+      pentagon.push_back (outline[i + 1] + up);
+    }
+    addFace (s, pentagon, out);
+  }
+  return s;
+}
+
+Shape
 boredCube ()
 {
   Shape s;

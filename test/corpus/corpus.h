@@ -77,6 +77,7 @@ Shape fin ();       //!< a thin plate 0.9 x 0.6 x 0.04: two faces close together
 Shape sheet (double thickness);  //!< 0.9 x 0.6 x thickness, centred at z = 0.5: sheet metal
 Shape lBlock ();    //!< an L-shaped solid: convex and concave edges
 Shape boredCube (); //!< the unit cube with a bore of radius 0.22 along z through its middle
+Shape starPrism (); //!< a five-pointed star (tips 0.45, notches 0.2 from the axis) 0.3 high: edges of 44 degrees
 
 /** \brief fandisk from Debian's libcgal-demo (data.tar.gz), scaled into the
   * unit cube; false when the package is not installed. */

@@ -127,7 +127,8 @@ refitAcrossSheets (pcl::PointCloud<pcl::PointNormal> &cloud, const pcl::PointClo
                    unsigned int threads, const std::vector<char> &skip)
 {
   std::vector<int> suspects = highVariationPoints (cloud, variation);
-  suspects.erase (std::remove_if (suspects.begin (), suspects.end (), [&] (int i) { return !skip.empty () && skip[i]; }), suspects.end ());
+  const auto skipped = [&skip] (int i) { return !skip.empty () && skip[i]; };
+  suspects.erase (std::remove_if (suspects.begin (), suspects.end (), skipped), suspects.end ());
   std::vector<Eigen::Vector3f> normals (cloud.size ());
   for (std::size_t i = 0; i < cloud.size (); ++i)
     normals[i] = cloud[i].getNormalVector3fMap ();
@@ -170,7 +171,8 @@ namespace
 // the point and two of its nearest kCreasePlaneNeighbours, the one with the
 // most neighbours within the tolerance is refitted on those, if it holds at
 // least kCreaseGain x k neighbours more than the PCA plane through the point
-// (a smooth surface's PCA plane holds about all of them, and keeps its normal).
+// (a smooth surface's PCA plane holds about all of them, and keeps its
+// normal), and the edge is acute (kMaxCreaseAngle).
 constexpr int kCreasePlaneNeighbours = 12;
 constexpr float kCreaseGain = 0.15f;
 // Planes from two neighbours at an angle under asin (this) of each other
@@ -268,7 +270,7 @@ centroidOf (const pcl::PointCloud<pcl::PointXYZ> &xyz, const pcl::Indices &indic
   return sum / static_cast<float> (std::max<std::size_t> (indices.size (), 1));
 }
 
-/** Do the faces of points \a a (plane normal \a n) and \b b (normal \a m)
+/** Do the faces of points \a a (plane normal \a n) and \a b (normal \a m)
   * meet at an edge under kMaxCreaseAngle inside? Seen along the edge, the
   * directions from it to each face's centroid. */
 bool

@@ -152,8 +152,9 @@ private:
     return dot + 2.f * (1.f - std::abs (dot)) * side;
   }
 
-  // Reaches \a to from the reached \a from: every reached neighbour votes on
-  // its orientation, not only \a from (on noisy samples one close pair's
+  // How the reached neighbours vote on \a to's sign (positive: keep),
+  // reached from \a from; near_ holds its neighbours. Every reached
+  // neighbour votes, not only \a from (on noisy samples one close pair's
   // side test is a coin toss: noise of 0.3 % of the diagonal flipped whole
   // faces of a cube), and \a from always does (kNN is not symmetric). Once
   // a neighbour on its own sheet has voted (normals within
@@ -165,15 +166,12 @@ private:
   // and they voted for the flip (exact normals, signs scrambled: 342-1,422
   // of 20,000 came out inward; 0 now). A point whose reached neighbours
   // all lie across an edge (the first one reached on a face) is decided
-  // by them, as before. Then queues the links to its unreached neighbours;
-  // true if it was flipped.
-  bool
-  reach (int from, int to)
+  // by them, as before. A part's seed (\a from = \a to) also votes upward.
+  float
+  voteOn (int from, int to)
   {
-    grid_.nearestK (positions_[to], k_ + 1, near_);
     const Eigen::Vector3f own = normal (to).normalized ();
-    float vote = from == to ? own.z () : 0.f;  // a part's seed: upward
-    float same_sheet_vote = 0.f;
+    float vote = from == to ? own.z () : 0.f, same_sheet_vote = 0.f;
     bool same_sheet_voted = false;
     const auto count = [&] (int voter) {
       const float a = agreement (voter, to);
@@ -193,8 +191,16 @@ private:
       }
     if (!from_voted)
       count (from);
-    if (same_sheet_voted && from != to)
-      vote = same_sheet_vote;
+    return same_sheet_voted && from != to ? same_sheet_vote : vote;
+  }
+
+  // Reaches \a to from the reached \a from, flips it if voteOn says so,
+  // then queues the links to its unreached neighbours; true if it was flipped.
+  bool
+  reach (int from, int to)
+  {
+    grid_.nearestK (positions_[to], k_ + 1, near_);
+    const float vote = voteOn (from, to);
     reached_[to] = 1;
     part_.push_back (to);
     // Its share of the surface: that of a disc through its k-th neighbour.

@@ -896,7 +896,7 @@ TEST (NormalEstimation, AcuteEdgesKeepEachFacesOwnNormal)
   // across, a cut hole missed). A point's normal near an acute edge is now
   // refitted on the plane through it that most neighbours lie on
   // (refitAtCreases), and the walk counts the votes of a point's own sheet
-  // (OrientationWalk::reach).
+  // (OrientationWalk::voteOn).
   // Noisy, the refit is off and PCA's normals blend the faces of a tip; at
   // 0.3 % noise both faces of one tip still come out inside-out (4,967;
   // 4,918 before): not asserted.

@@ -1040,7 +1040,7 @@ TEST (NormalOrientation, ThinClosedPartsComeOutOutward)
 // the far face lies about in that face's plane: neither the dot product nor
 // the tangent-plane sides tell a flipped face from a gently bent one, and
 // those pairs voted for the flip. Once a neighbour on the point's own sheet
-// has voted, only such neighbours do now (OrientationWalk::reach). Exact
+// has voted, only such neighbours do now (OrientationWalk::voteOn). Exact
 // normals, signs scrambled.
 TEST (NormalOrientation, AcuteEdgesDoNotTurnFacesOver)
 {

@@ -260,16 +260,6 @@ patchNormal (const pcl::PointCloud<pcl::PointXYZ> &xyz, const pcl::Indices &indi
   return true;
 }
 
-/** The centroid of the points \a indices. */
-Eigen::Vector3f
-centroidOf (const pcl::PointCloud<pcl::PointXYZ> &xyz, const pcl::Indices &indices)
-{
-  Eigen::Vector3f sum = Eigen::Vector3f::Zero ();
-  for (const auto j : indices)
-    sum += xyz[j].getVector3fMap ();
-  return sum / static_cast<float> (std::max<std::size_t> (indices.size (), 1));
-}
-
 /** Do the faces of points \a a (plane normal \a n) and \a b (normal \a m)
   * meet at an edge under kMaxCreaseAngle inside? Seen along the edge, the
   * directions from it to each face's centroid. */
@@ -280,7 +270,10 @@ acuteEdge (const pcl::PointCloud<pcl::PointXYZ> &xyz, const pcl::Indices &a, con
   const Eigen::Vector3f along = n.cross (m);
   if (!(along.norm () > kCreaseMinSine))
     return false;  // parallel faces: a sheet, not an edge
-  const Eigen::Vector3f ca = centroidOf (xyz, a), cb = centroidOf (xyz, b);
+  Eigen::Vector4f centroid_a, centroid_b;
+  pcl::compute3DCentroid (xyz, a, centroid_a);
+  pcl::compute3DCentroid (xyz, b, centroid_b);
+  const Eigen::Vector3f ca = centroid_a.head<3> (), cb = centroid_b.head<3> ();
   Eigen::Matrix3f planes;
   planes << n.transpose (), m.transpose (), along.normalized ().transpose ();
   const Eigen::Vector3f on_edge = planes.colPivHouseholderQr ().solve (

@@ -141,6 +141,10 @@ run (const Options &options)
       if (r.closed)
         std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s, closed\n", hole + 1,
                       holes, r.passes, r.points_added, pcl_holefill::toString (r.termination));
+      else if (r.withdrawn)
+        std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %s, open (about %g across left): the patch "
+                      "grew past the hole, withdrawn\n", hole + 1, holes, r.passes,
+                      pcl_holefill::toString (r.termination), r.open_diameter);
       else
         std::fprintf (stderr, "pcl_holefill: hole %zu/%zu: %u passes, %zu points added, %s, open (about %g across "
                       "left)\n", hole + 1, holes, r.passes, r.points_added, pcl_holefill::toString (r.termination),

@@ -74,7 +74,8 @@ reportJson (const std::string &input, std::size_t input_points, const std::vecto
         << ", \"pitch\": " << r.pitch
         << ", \"radius\": " << r.radius << ", \"noise\": " << r.noise
         << ", \"first_order\": " << (r.first_order ? "true" : "false")
-        << ", \"across_opening\": " << (r.across_opening ? "true" : "false") << ", \"sigma_n\": ";
+        << ", \"across_opening\": " << (r.across_opening ? "true" : "false")
+        << ", \"withdrawn\": " << (r.withdrawn ? "true" : "false") << ", \"sigma_n\": ";
     if (std::isinf (r.sigma_n))
       out << "\"sup\"";  // JSON has no infinity
     else

@@ -457,6 +457,17 @@ private:
   static bool
   stoppedNaturally (const HoleReport &report);
 
+  /** The area of \a added filled points over that of the disc spanning
+    * the rim of \a loop. */
+  static float
+  discsCovered (const BoundaryLoop &loop, const HoleScale &scale, std::size_t added);
+
+  /** Did a fill that stayed open cover more than a band along its rim can
+    * (detail::kNotClosedIn, kBandMargin)? Then it grew elsewhere and is
+    * withdrawn. */
+  static bool
+  grewPastHole (const BoundaryLoop &loop, const HoleScale &scale, std::size_t added, const HoleReport &report);
+
   /** The warnings a user should see about one hole. */
   void
   warnAbout (const BoundaryLoop &loop, const HoleScale &scale, std::size_t added, const HoleReport &report) const;

@@ -51,6 +51,8 @@ struct HoleReport
   bool first_order = false;            //!< the first-order extension was used (off on noisy rims)
   bool across_opening = false;         //!< filled across an opening, its rim a crease all round (the fronts
                                        //!< ran off along the walls first: detail/opening.h)
+  bool withdrawn = false;              //!< the patch stayed open yet covered more than a band along the rim
+                                       //!< can: it grew past the hole and none of it was added
   float sigma_n = 0.f;                 //!< sigma_n used (chosen per hole when automatic; kSup = off)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero ();  //!< centroid of the rim
   pcl::Indices boundary;               //!< the hole's boundary loop, in order: indices of the output's first

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import pcl_holefill
+from single_view import single_view
 
 SAMPLES = 20000
 
@@ -414,28 +415,6 @@ def test_a_box_scanned_without_its_underside_is_closed_by_the_command(tmp_path):
     assert (np.abs(np.clip(filled[:, :2], 0.0, 1.0) - filled[:, :2]) < 0.5 * p).all()
     underside = np.c_[np.random.default_rng(5).random((3000, 2)), np.full(3000, lowest)]
     assert (gap(underside, out[:, :3], 2 * p) <= 1.5 * p).mean() >= 0.99
-
-
-def single_view(points, normals, sensor, n):
-    """A range scan of the dense samples \a points from \a sensor: on a
-    pinhole's pixel grid sized for about n samples, the nearest sample of
-    each pixel that faces the sensor (a z-buffer)."""
-    rays = points - sensor
-    depth = np.linalg.norm(rays, axis=1)
-    axis = points.mean(axis=0) - sensor
-    axis /= np.linalg.norm(axis)
-    e1 = np.cross(axis, [0.123, 1.0, 0.05])
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(axis, e1)
-    along = rays @ axis
-    u, v = rays @ e1 / along, rays @ e2 / along
-    facing = np.sum(normals * (sensor - points), axis=1) > 0
-    step = np.sqrt(np.ptp(u[facing]) * np.ptp(v[facing]) / (1.3 * n))
-    pixel = ((u - u.min()) / step).astype(np.int64) * 1000003 + ((v - v.min()) / step).astype(np.int64)
-    order = np.lexsort((depth, pixel))
-    first = order[np.r_[True, pixel[order][1:] != pixel[order][:-1]]]
-    first = first[facing[first]]
-    return points[first], normals[first]
 
 
 def test_a_single_view_scan_gets_no_patch_past_its_holes(tmp_path):

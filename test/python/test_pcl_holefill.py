@@ -389,6 +389,21 @@ def scan_line_box_without_underside(n, rng):
     return np.concatenate(faces), pitch
 
 
+def command_with_report(tmp_path, points):
+    """The installed command, with no option, on \a points written as x y z
+    (7 decimals), its JSON report asked for: (output rows, filled points,
+    the report's holes). The input points must come back unchanged."""
+    import json
+    command = os.environ.get("PCL_HOLEFILL_COMMAND")
+    assert command, "PCL_HOLEFILL_COMMAND must name the pcl_holefill command"
+    np.savetxt(tmp_path / "in.xyz", points, fmt="%.7f")
+    subprocess.run([command, str(tmp_path / "in.xyz"), str(tmp_path / "out.xyz"), "-q",
+                    "-report", str(tmp_path / "holes.json")], check=True)
+    out = np.loadtxt(tmp_path / "out.xyz")
+    assert np.array_equal(out[out[:, -1] == 0][:, :3], np.round(points, 7))
+    return out, out[out[:, -1] == 1][:, :3], json.loads((tmp_path / "holes.json").read_text())["holes"]
+
+
 def test_a_box_scanned_without_its_underside_is_closed_by_the_command(tmp_path):
     # A scan that never saw the underside, on scan lines, x y z only, as a
     # user runs it: the installed command estimates the normals, and its
@@ -396,17 +411,8 @@ def test_a_box_scanned_without_its_underside_is_closed_by_the_command(tmp_path):
     # Openings.ABoxSampledWithoutItsLidIsClosedAcrossIt has the samplers on
     # which the first fill stopped at the rim.) Reached: flat at the lowest
     # line (1e-5 pitch off it), nothing past the walls, covered 100 %.
-    import json
-    command = os.environ.get("PCL_HOLEFILL_COMMAND")
-    assert command, "PCL_HOLEFILL_COMMAND must name the pcl_holefill command"
     points, p = scan_line_box_without_underside(30000, np.random.default_rng(4))
-    np.savetxt(tmp_path / "in.xyz", points, fmt="%.7f")
-    subprocess.run([command, str(tmp_path / "in.xyz"), str(tmp_path / "out.xyz"), "-q",
-                    "-report", str(tmp_path / "holes.json")], check=True)
-    out = np.loadtxt(tmp_path / "out.xyz")
-    filled = out[out[:, -1] == 1][:, :3]
-    assert np.array_equal(out[out[:, -1] == 0][:, :3], np.round(points, 7))
-    holes = json.loads((tmp_path / "holes.json").read_text())["holes"]
+    out, filled, holes = command_with_report(tmp_path, points)
     assert len(holes) == 1 and holes[0]["across_opening"] and holes[0]["closed"]
     # The lowest scan line runs a pitch above the crease: nothing tells
     # where below it the face is, and the fill lies flat at that line.
@@ -426,21 +432,12 @@ def test_a_single_view_scan_gets_no_patch_past_its_holes(tmp_path):
     # withdrawn now (the report says so), while a hole cut into a side is
     # filled. Reached: the filled points on the part (0.00 pitch off: a
     # flat face), the cut hole covered 100 %.
-    import json
-    command = os.environ.get("PCL_HOLEFILL_COMMAND")
-    assert command, "PCL_HOLEFILL_COMMAND must name the pcl_holefill command"
     dense, dense_normals = bored_cube_samples(600000, 8)
     points, normals = single_view(dense, dense_normals, np.array([2.0, 1.8, 2.5]), SAMPLES)
     # The pixels' footprint: about the nearest-neighbour distance of a grid.
     p = np.median(np.sort(np.linalg.norm(points[:1000, None] - points[None], axis=2), axis=1)[:, 1])
     kept, _, removed = cut(points, normals, [((1.0, 0.55, 0.45), 8 * p)])
-    np.savetxt(tmp_path / "in.xyz", kept, fmt="%.7f")
-    subprocess.run([command, str(tmp_path / "in.xyz"), str(tmp_path / "out.xyz"), "-q",
-                    "-report", str(tmp_path / "holes.json")], check=True)
-    out = np.loadtxt(tmp_path / "out.xyz")
-    filled = out[out[:, -1] == 1][:, :3]
-    assert np.array_equal(out[out[:, -1] == 0][:, :3], np.round(kept, 7))
-    holes = json.loads((tmp_path / "holes.json").read_text())["holes"]
+    out, filled, holes = command_with_report(tmp_path, kept)
     assert any(h["withdrawn"] and h["points_added"] == 0 and not h["closed"] for h in holes)
     assert len(filled) > 0 and bored_cube_distance(filled).max() < 1.0 * p
     assert (gap(removed, out[:, :3]) <= 1.5 * p).mean() >= 0.99

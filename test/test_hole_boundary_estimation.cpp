@@ -353,6 +353,33 @@ TEST (LoopTracing, ACircleIsOneClosedLoop)
   EXPECT_GE (loops[0].members.size (), positions.size () - 4);  // a few absorbed as a second row
 }
 
+// Links per point: a circle whose one half is sampled 1.6 apart and the
+// other 0.6 apart is open under one link of 1 (the sparse half falls apart
+// into single points) and one closed loop when each point's link is 1.6
+// times its own spacing (a merged scan, sparser in one part).
+TEST (LoopTracing, ASparserPartLinksWithItsOwnLink)
+{
+  std::vector<Eigen::Vector3f> positions, normals, gaps;
+  std::vector<float> links;
+  const float radius = 6.f;
+  for (float a = 0.f; a < 2.f * static_cast<float> (M_PI) - 0.05f;)
+  {
+    const Eigen::Vector3f p (radius * std::cos (a), radius * std::sin (a), 0.f);
+    positions.push_back (p);
+    normals.push_back (Eigen::Vector3f::UnitZ ());
+    gaps.push_back (-p.normalized ());
+    const float spacing = a < static_cast<float> (M_PI) ? 1.6f : 0.6f;
+    links.push_back (1.6f * spacing);
+    a += spacing / radius;
+  }
+  const auto one = detail::traceBoundaryLoops (positions, normals, gaps, 1.f, 3);
+  EXPECT_FALSE (std::any_of (one.begin (), one.end (), [] (const auto &l) { return l.closed; }));
+  const auto own = detail::traceBoundaryLoops (positions, normals, gaps, links, 3);
+  ASSERT_EQ (own.size (), 1u);
+  EXPECT_TRUE (own[0].closed);
+  EXPECT_GE (own[0].members.size (), positions.size () - 4);
+}
+
 // A piece of rim that ends just within 2 links of its start, having never
 // turned back, is no loop. It was one: a walk stuck within 2 links of home
 // closed, and on a noisy cube edge such a piece (6 points, 0.15 long, link

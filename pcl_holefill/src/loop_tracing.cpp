@@ -25,9 +25,30 @@ namespace pcl_holefill::detail
 constexpr float kOpeningGapVote = 0.25f;
 namespace
 {
-/** Connected sets of points under "closer than link". */
+/** The link of points \a a and \a b: the longer of their own. */
+float
+pairLink (const std::vector<float> &links, int a, int b)
+{
+  return std::max (links[static_cast<std::size_t> (a)], links[static_cast<std::size_t> (b)]);
+}
+
+/** Keeps of \a near, the points found within the longest link of \a p,
+  * those linked to \a p. */
+void
+keepLinked (std::vector<PointGrid::Neighbour> &near, const std::vector<float> &links, int p)
+{
+  near.erase (std::remove_if (near.begin (), near.end (),
+                              [&] (const PointGrid::Neighbour &q) {
+                                const float link = pairLink (links, p, q.id);
+                                return q.sqr_distance > link * link;
+                              }),
+              near.end ());
+}
+
+/** Connected sets of points under "closer than their link". */
 std::vector<std::vector<int>>
-linkedSets (const PointGrid &grid, const std::vector<Eigen::Vector3f> &positions, float link)
+linkedSets (const PointGrid &grid, const std::vector<Eigen::Vector3f> &positions, const std::vector<float> &links,
+            float longest)
 {
   std::vector<int> label (positions.size (), -1);
   std::vector<std::vector<int>> sets;
@@ -45,7 +66,8 @@ linkedSets (const PointGrid &grid, const std::vector<Eigen::Vector3f> &positions
       const int p = stack.back ();
       stack.pop_back ();
       sets[id].push_back (p);
-      grid.withinRadius (positions[p], link, near);
+      grid.withinRadius (positions[p], longest, near);
+      keepLinked (near, links, p);
       for (const auto &q : near)
         if (label[q.id] < 0)
         {
@@ -107,8 +129,10 @@ constexpr float kMaxJoinGapInLinks = 2.f;
   * as a loop: long, and ending near its start (the rule of a walk stuck next
   * to home)? */
 bool
-endsNearStart (const std::vector<int> &path, const std::vector<Eigen::Vector3f> &positions, float link)
+endsNearStart (const std::vector<int> &path, const std::vector<Eigen::Vector3f> &positions,
+               const std::vector<float> &links)
 {
+  const float link = path.empty () ? 0.f : pairLink (links, path.front (), path.back ());
   return path.size () > 4 && loopLength (pathPositions (path, positions), false) > 3.f * link &&
          (positions[path.front ()] - positions[path.back ()]).norm () <= 2.f * link;
 }
@@ -121,7 +145,7 @@ endsNearStart (const std::vector<int> &path, const std::vector<Eigen::Vector3f> 
 void
 joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3f> &positions,
                 const std::vector<Eigen::Vector3f> &normals, const std::vector<Eigen::Vector3f> &tangents,
-                float link)
+                const std::vector<float> &links, float longest)
 {
   std::vector<std::size_t> open;
   std::vector<Eigen::Vector3f> starts;
@@ -133,7 +157,7 @@ joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3
     }
   if (open.size () < 2)
     return;
-  const float reach = kMaxJoinGapInLinks * link;
+  const float reach = kMaxJoinGapInLinks * longest;
   PointGrid grid (reach);
   grid.build (starts);
   struct Join
@@ -151,7 +175,9 @@ joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3
     {
       const std::size_t to = open[static_cast<std::size_t> (q.id)];
       const int start = loops[to].members.front ();
-      if (to != open[x] && (positions[start] - positions[end]).dot (tangents[end]) > 0.f &&
+      const float gap = kMaxJoinGapInLinks * pairLink (links, end, start);
+      if (to != open[x] && q.sqr_distance <= gap * gap &&
+          (positions[start] - positions[end]).dot (tangents[end]) > 0.f &&
           normals[end].dot (normals[start]) >= kMinLinkNormalCosine)
         joins.push_back ({std::sqrt (q.sqr_distance), open[x], to});
     }
@@ -177,7 +203,7 @@ joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3
     followed[join.from] = preceded[join.to] = 1;
     head_of[tail] = head;
     tail_of[head] = tail;
-    loops[head].closed = endsNearStart (chain, positions, link);
+    loops[head].closed = endsNearStart (chain, positions, links);
   }
   loops.erase (std::remove_if (loops.begin (), loops.end (), [] (const TracedLoop &l) { return l.members.empty (); }),
                loops.end ());
@@ -187,8 +213,8 @@ joinOpenPieces (std::vector<TracedLoop> &loops, const std::vector<Eigen::Vector3
 std::vector<int>
 walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
       const std::vector<Eigen::Vector3f> &normals, const std::vector<Eigen::Vector3f> &tangents,
-      const std::vector<Eigen::Vector3f> &gap_directions, const PointGrid &grid, float link,
-      std::vector<char> &visited, bool &closed)
+      const std::vector<Eigen::Vector3f> &gap_directions, const PointGrid &grid, const std::vector<float> &links,
+      float longest, std::vector<char> &visited, bool &closed)
 {
   std::vector<int> path{start};
   visited[start] = 1;
@@ -200,7 +226,10 @@ walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
   const std::size_t bound = positions.size ();
   for (std::size_t step = 0; step < bound; ++step)
   {
-    grid.withinRadius (positions[current], link, near);
+    grid.withinRadius (positions[current], longest, near);
+    keepLinked (near, links, current);
+    // The thresholds of closing, in links: the longer of start's and current's.
+    const float link = pairLink (links, start, current);
     std::sort (near.begin (), near.end (), [] (const auto &a, const auto &b) {
       return a.sqr_distance < b.sqr_distance || (a.sqr_distance == b.sqr_distance && a.id < b.id);
     });
@@ -257,7 +286,8 @@ walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
     const auto second_row = [&] (const PointGrid::Neighbour &q) {
       const bool beside_or_behind = (positions[q.id] - positions[current]).dot (step_dir) <= 0.5f * std::sqrt (q.sqr_distance);
       const bool same_side = gap_directions[q.id].dot (gap_directions[current]) > kMaxAbsorbedGapOpposition;
-      return beside_or_behind && q.sqr_distance <= 0.25f * link * link && same_side;
+      const float row_link = pairLink (links, current, q.id);
+      return beside_or_behind && q.sqr_distance <= 0.25f * row_link * row_link && same_side;
     };
     for (const auto &q : near)
       if (!visited[q.id] && second_row (q))
@@ -279,20 +309,22 @@ walk (int start, float sense, const std::vector<Eigen::Vector3f> &positions,
 std::vector<TracedLoop>
 traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
                     const std::vector<Eigen::Vector3f> &normals,
-                    const std::vector<Eigen::Vector3f> &gap_directions, float link_distance,
-                    int min_points)
+                    const std::vector<Eigen::Vector3f> &gap_directions,
+                    const std::vector<float> &link_distances, int min_points)
 {
   std::vector<TracedLoop> loops;
-  if (positions.empty () || !(link_distance > 0.f))
+  if (positions.empty () || link_distances.size () != positions.size () ||
+      !std::all_of (link_distances.begin (), link_distances.end (), [] (float l) { return l > 0.f && std::isfinite (l); }))
     return loops;
-  PointGrid grid (link_distance);
+  const float longest = *std::max_element (link_distances.begin (), link_distances.end ());
+  PointGrid grid (longest);
   grid.build (positions);
   std::vector<Eigen::Vector3f> tangents (positions.size ());
   // Walking along n x g keeps the missing surface on the right-hand side.
   for (std::size_t i = 0; i < positions.size (); ++i)
     tangents[i] = normals[i].cross (gap_directions[i]).normalized ();
   std::vector<char> visited (positions.size (), 0);
-  for (const auto &set : linkedSets (grid, positions, link_distance))
+  for (const auto &set : linkedSets (grid, positions, link_distances, longest))
   {
     if (static_cast<int> (set.size ()) < min_points)
       continue;
@@ -304,12 +336,14 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
       if (fresh == set.end ())
         break;
       bool closed = false;
-      std::vector<int> forward = walk (*fresh, 1.f, positions, normals, tangents, gap_directions, grid, link_distance, visited, closed);
+      std::vector<int> forward =
+          walk (*fresh, 1.f, positions, normals, tangents, gap_directions, grid, link_distances, longest, visited, closed);
       if (!closed)
       {
         // An open rim: the start may be mid-way, so extend backwards too.
         bool ignored = false;
-        std::vector<int> backward = walk (*fresh, -1.f, positions, normals, tangents, gap_directions, grid, link_distance, visited, ignored);
+        std::vector<int> backward = walk (*fresh, -1.f, positions, normals, tangents, gap_directions, grid,
+                                          link_distances, longest, visited, ignored);
         std::reverse (backward.begin (), backward.end ());
         backward.pop_back ();  // the start, already in forward
         backward.insert (backward.end (), forward.begin (), forward.end ());
@@ -317,13 +351,13 @@ traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
         // Both walks went round and met: a loop after all (a sharp corner, or
         // the last points absorbed by a ragged rim, stopped one). The ends may
         // be as far apart as a walk stuck next to home is allowed to be.
-        closed = endsNearStart (forward, positions, link_distance);
+        closed = endsNearStart (forward, positions, link_distances);
       }
       if (static_cast<int> (forward.size ()) >= min_points)
         loops.push_back ({forward, closed});
     }
   }
-  joinOpenPieces (loops, positions, normals, tangents, link_distance);
+  joinOpenPieces (loops, positions, normals, tangents, link_distances, longest);
   return loops;
 }
 

@@ -758,6 +758,24 @@ missingSurface (const Case &c)
 }
 }  // namespace
 
+DetectionScore
+detectHoles (const Cloud::Ptr &kept, const std::vector<Ball> &holes, double pitch)
+{
+  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
+  estimation.setInputCloud (kept);
+  std::vector<pcl_holefill::BoundaryLoop> loops;
+  estimation.compute (loops);
+  std::vector<std::vector<Eigen::Vector3f>> loop_positions;
+  for (const auto &l : loops)
+    if (l.is_hole)
+    {
+      loop_positions.emplace_back ();
+      for (const auto i : l.indices)
+        loop_positions.back ().push_back ((*kept)[i].getVector3fMap ());
+    }
+  return scoreDetection (loop_positions, holes, pitch);
+}
+
 Outcome
 runCase (const Case &c)
 {
@@ -765,19 +783,7 @@ runCase (const Case &c)
   const Cloud::Ptr kept (new Cloud (cut.kept));
   const double p = pitch (c.shape, c.points);
   Outcome o;
-  pcl_holefill::HoleBoundaryEstimation<pcl::PointNormal> estimation;
-  estimation.setInputCloud (kept);
-  std::vector<pcl_holefill::BoundaryLoop> loops;
-  estimation.compute (loops);
-  std::vector<std::vector<Eigen::Vector3f>> holes;
-  for (const auto &l : loops)
-    if (l.is_hole)
-    {
-      holes.emplace_back ();
-      for (const auto i : l.indices)
-        holes.back ().push_back ((*kept)[i].getVector3fMap ());
-    }
-  o.detection = scoreDetection (holes, c.holes, p);
+  o.detection = detectHoles (kept, c.holes, p);
 
   pcl_holefill::HoleFilling<pcl::PointNormal> filler;  // no option at all
   filler.setInputCloud (kept);

@@ -122,6 +122,11 @@ DetectionScore
 scoreDetection (const std::vector<std::vector<Eigen::Vector3f>> &hole_loops, const std::vector<Ball> &holes,
                 double pitch);
 
+/** \brief HoleBoundaryEstimation with no option on \a kept, its hole loops
+  * scored against the cut \a holes (scoreDetection). */
+DetectionScore
+detectHoles (const Cloud::Ptr &kept, const std::vector<Ball> &holes, double pitch);
+
 }  // namespace corpus
 
 namespace corpus

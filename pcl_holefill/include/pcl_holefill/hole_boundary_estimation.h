@@ -33,7 +33,8 @@ namespace pcl_holefill
   *     (emptyDiscTouches): every sampling leaves small gaps, white noise
   *     (uniform random sampling) gaps of up to 4.9 pitches across on 4
   *     million points; a hole is missing surface wider than those;
-  *  2. rim points closer than link_distance_factor pitches are
+  *  2. rim points closer than link_distance_factor pitches (the cloud's
+  *     mean pitch, or the pitch around them where the cloud is sparser) are
   *     chained into loops (traceBoundaryLoops), and gaps between consecutive
   *     loop points are closed with the paper's midpoint refinement (sec. 3.3);
   *  3. a loop whose empty sectors face its inside is a hole; one facing
@@ -204,6 +205,7 @@ private:
     std::size_t nearest_at = 0;  //!< ... from here ...
     int nearest_count = 0;       //!< ... this many, nearest first (on its own side)
     bool on_thin_part = false;   //!< the other side of a thin part is among its k nearest
+    float pitch = 0.f;           //!< the sampling pitch around it (its own and its k nearest's, averaged)
   };
 
   /** The rim points of stage 1 and the k nearest of each, in one store per

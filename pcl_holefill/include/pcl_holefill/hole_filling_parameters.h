@@ -124,8 +124,8 @@ constexpr ParameterSpec kAngleThreshold{
 constexpr ParameterSpec kLinkDistanceFactor{
     "link distance factor", "rim points closer than this are chained into one loop", "",
     "HoleBoundaryEstimation::setLinkDistanceFactor", 4.5f, 1.f, kUnbounded, false, false,
-    "sampling pitches (a rim of random samples, thinned to the points an empty disc touches, "
-    "has steps of up to 4)"};
+    "sampling pitches: the cloud's mean, or where the cloud is sparser the pitch around the rim point "
+    "(a rim of random samples, thinned to the points an empty disc touches, has steps of up to 4)"};
 constexpr ParameterSpec kMinLoopPoints{
     "min loop points", "shorter loops are ignored as noise", "",
     "HoleBoundaryEstimation::setMinLoopPoints", 6.f, 3.f, kUnbounded, false, false, "points"};

@@ -20,18 +20,31 @@ struct TracedLoop
 
 /** \brief Chains flagged boundary points into ordered loops.
   *
-  * Points closer than \a link_distance are linked; each connected set is
-  * walked along its tangent (normal x gap direction, so the missing surface
-  * stays on one side), always to the nearest unvisited point ahead. Points a
-  * row behind the walk are absorbed, so a rim two points deep gives one loop;
-  * a gap shorter than \a link_distance is jumped; spurs, which the walk never
-  * needs, are left out. Sets with fewer than \a min_points are dropped.
-  * Every loop runs a bounded number of steps (the size of its set). */
+  * Two points are linked when closer than the longer of their
+  * \a link_distances (one per point: where a cloud is sampled more sparsely,
+  * its rim points lie farther apart); each connected set is walked along its
+  * tangent (normal x gap direction, so the missing surface stays on one
+  * side), always to the nearest unvisited point ahead. Points a row behind
+  * the walk are absorbed, so a rim two points deep gives one loop; a gap
+  * shorter than the link is jumped; spurs, which the walk never needs, are
+  * left out. Sets with fewer than \a min_points are dropped. Every loop runs
+  * a bounded number of steps (the size of its set). */
 std::vector<TracedLoop>
 traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
                     const std::vector<Eigen::Vector3f> &normals,
+                    const std::vector<Eigen::Vector3f> &gap_directions,
+                    const std::vector<float> &link_distances, int min_points);
+
+/** \brief traceBoundaryLoops with one \a link_distance for every point. */
+inline std::vector<TracedLoop>
+traceBoundaryLoops (const std::vector<Eigen::Vector3f> &positions,
+                    const std::vector<Eigen::Vector3f> &normals,
                     const std::vector<Eigen::Vector3f> &gap_directions, float link_distance,
-                    int min_points);
+                    int min_points)
+{
+  return traceBoundaryLoops (positions, normals, gap_directions,
+                             std::vector<float> (positions.size (), link_distance), min_points);
+}
 
 /** \brief The paper's section 3.3: between consecutive \a feature points
   * (indices of a cloud), recursively insert the cloud point nearest to each

@@ -286,6 +286,23 @@ TEST (LoopTracing, TwoHolesAcrossANarrowBridgeAreBothFound)
     }
 }
 
+namespace
+{
+// The points of \a cloud with x >= 0.5, and 1 in 4 of the others, drawn
+// at random: a cloud with a density step.
+Cloud
+thinHalf (const Cloud &cloud, unsigned seed)
+{
+  Cloud thinned;
+  std::mt19937 random (seed);
+  std::uniform_real_distribution<double> unit (0.0, 1.0);
+  for (const auto &q : cloud)
+    if (q.x >= 0.5f || unit (random) < 0.25)
+      thinned.push_back (q);
+  return thinned;
+}
+}  // namespace
+
 // Merged scans are denser in one part than in another. A cube sampled
 // uniformly at random, its half x < 0.5 four times sparser than the other
 // (its pitch 1.6 times the cloud's mean): with the loop tracing's link taken
@@ -298,13 +315,7 @@ TEST (DensityStep, HolesInTheSparserPartAreFoundAndFilled)
   const auto shape = pcl_holefill::shapes::cube ();
   for (const unsigned seed : {1u, 7u})
   {
-    const Cloud dense = corpus::sampleSurface (shape, 40000, Sampling::kRandom, seed);
-    Cloud cloud;
-    std::mt19937 random (seed);
-    std::uniform_real_distribution<double> unit (0.0, 1.0);
-    for (const auto &q : dense)
-      if (q.x >= 0.5f || unit (random) < 0.25)
-        cloud.push_back (q);
+    const Cloud cloud = thinHalf (corpus::sampleSurface (shape, 40000, Sampling::kRandom, seed), seed);
     // The sparse half's own pitch: its area (half the cube's 6) over its points.
     const auto sparse = static_cast<double> (std::count_if (cloud.begin (), cloud.end (), [] (const auto &q) { return q.x < 0.5f; }));
     const double p = std::sqrt (3.0 / sparse);
@@ -337,6 +348,46 @@ TEST (DensityStep, HolesInTheSparserPartAreFoundAndFilled)
     // pitch or more past the ball); the bound is 2
     EXPECT_LE (past, 2.0 * p);
     EXPECT_TRUE (fill.kept_unchanged);
+  }
+}
+
+// A cloud sampled evenly in one part and randomly in another: voxel-grid
+// and Poisson-disk samples of a cube whose half x < 0.5 was thinned to 1 in 4 at random (a
+// part of a merged scan, a region decimated). The min hole size chosen from
+// the whole cloud's evenness was the even samplings' 4 pitches, and the
+// thinned half's random gaps (up to about 5 of its pitches) came out as
+// false holes and were filled; each region is judged by its own evenness now.
+// Holes of 10 pitches in either half are found.
+TEST (DensityStep, AThinnedPartOfAnEvenCloudKeepsItsGaps)
+{
+  const auto shape = pcl_holefill::shapes::cube ();
+  for (const auto sampling : {Sampling::kVoxel, Sampling::kPoisson})
+  for (const unsigned seed : {1u, 3u, 7u})
+  {
+    const Cloud cloud = thinHalf (corpus::sampleSurface (shape, 32000, sampling, seed), seed);
+    const auto dense = static_cast<double> (std::count_if (cloud.begin (), cloud.end (), [] (const auto &q) { return q.x >= 0.5f; }));
+    const double p = std::sqrt (3.0 / dense);  // the even half's pitch; the thinned half's is 2 p
+    SCOPED_TRACE (testing::Message () << corpus::toString (sampling) << ", seed " << seed << ", even pitch " << p);
+    const Cloud::Ptr whole (new Cloud (cloud));
+    // Hole-free: nothing found, nothing added.
+    const auto none = corpus::detectHoles (whole, {}, p);
+    EXPECT_EQ (none.false_holes, 0u);
+    pcl_holefill::HoleFilling<pcl::PointNormal> filler;
+    filler.setInputCloud (whole);
+    Cloud output;
+    filler.filter (output);
+    EXPECT_EQ (output.size (), cloud.size ());
+    // A hole of 10 pitches on a face of each half, the thinned half's 11
+    // pitches (its own 5.5) from the step. (Centred at x = 0.25, 4 of its
+    // own pitches from the step, its rim joined the rim points that the step
+    // itself gives the dense side, an open border: Poisson-disk seed 3, as
+    // before this change.)
+    const std::vector<pcl_holefill::shapes::Ball> balls{{Eigen::Vector3d (0.2, 0.5, 1.0), 10.0 * p},  // 10 of its own pitches
+                                                        {Eigen::Vector3d (0.75, 0.5, 1.0), 5.0 * p}};
+    const auto cut = pcl_holefill::shapes::cutHoles (cloud, balls);
+    const auto detection = corpus::detectHoles (Cloud::Ptr (new Cloud (cut.kept)), balls, p);
+    EXPECT_EQ (detection.found, 2u);
+    EXPECT_EQ (detection.false_holes, 0u);
   }
 }
 

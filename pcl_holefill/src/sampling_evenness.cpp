@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace pcl_holefill::detail
 {
@@ -43,5 +44,62 @@ minHoleSizeForEvenness (float evenness)
 {
   const float t = std::clamp ((evenness - kRandomEvenness) / (kEvenEvenness - kRandomEvenness), 0.f, 1.f);
   return kRandomSamplingMinHoleSize + t * (kEvenSamplingMinHoleSize - kRandomSamplingMinHoleSize);
+}
+
+void
+RegionEvenness::build (const std::vector<Eigen::Vector3f> &positions, const std::vector<float> &pitch_of,
+                       const std::vector<float> &evenness_of, std::size_t stride, int threads)
+{
+  std::vector<Eigen::Vector3f> measured;
+  values_.clear ();
+  areas_.clear ();
+  float pitch_sum = 0.f;
+  for (std::size_t s = 0; s < evenness_of.size () && s * stride < positions.size (); ++s)
+    if (evenness_of[s] > 0.f)
+    {
+      const float pitch = pitch_of[s * stride];
+      measured.push_back (positions[s * stride]);
+      values_.push_back (evenness_of[s]);
+      areas_.push_back (pitch * pitch);
+      pitch_sum += pitch;
+    }
+  if (values_.size () < static_cast<std::size_t> (kMinRegionEvennessSamples))
+  {
+    values_.clear ();
+    grid_.reset (1.f);
+    return;
+  }
+  // Cells of the radius around a place of the mean pitch: a query reads its
+  // own cell block.
+  grid_.reset (kRegionEvennessRadius * pitch_sum / static_cast<float> (values_.size ()));
+  grid_.build (measured, nullptr, threads);
+}
+
+float
+RegionEvenness::around (const Eigen::Vector3f &position, float pitch) const
+{
+  if (values_.empty () || !(pitch > 0.f))
+    return 0.f;
+  thread_local std::vector<PointGrid::Neighbour> within;
+  thread_local std::vector<std::pair<float, float>> weighted;
+  grid_.withinRadius (position, kRegionEvennessRadius * pitch, within);
+  if (within.size () < static_cast<std::size_t> (kMinRegionEvennessSamples))
+    return 0.f;
+  weighted.clear ();
+  float total = 0.f;
+  for (const auto &m : within)
+  {
+    const std::size_t i = static_cast<std::size_t> (m.id);
+    weighted.emplace_back (values_[i], areas_[i]);
+    total += areas_[i];
+  }
+  // Sorted by value, then area: the same quartile in whatever order the
+  // grid returned them.
+  std::sort (weighted.begin (), weighted.end ());
+  float below = 0.f;
+  for (const auto &[value, area] : weighted)
+    if ((below += area) >= 0.25f * total)
+      return value;
+  return weighted.back ().first;
 }
 }  // namespace pcl_holefill::detail

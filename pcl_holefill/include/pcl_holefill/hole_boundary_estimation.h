@@ -9,6 +9,7 @@
 #include <pcl_holefill/hole_filling_parameters.h>
 #include <pcl_holefill/detail/loop_tracing.h>
 #include <pcl_holefill/detail/point_grid.h>
+#include <pcl_holefill/detail/sampling_evenness.h>
 
 #include <pcl/pcl_base.h>
 #include <pcl/search/search.h>
@@ -206,6 +207,7 @@ private:
     int nearest_count = 0;       //!< ... this many, nearest first (on its own side)
     bool on_thin_part = false;   //!< the other side of a thin part is among its k nearest
     float pitch = 0.f;           //!< the sampling pitch around it (its own and its k nearest's, averaged)
+    float min_hole_size = 0.f;   //!< the min hole size (pitches) applied around it (minHoleSizeAround)
   };
 
   /** The rim points of stage 1 and the k nearest of each, in one store per
@@ -296,12 +298,19 @@ private:
   /** Sets min_hole_size_used_: the min hole size set, or one for the
     * sampling's evenness (the lower quartile of \a evenness_of: every
     * kEvennessStride-th point's tangential nearest neighbour over its pitch,
-    * 0 where not measured; reordered). */
+    * 0 where not measured); and, when none is set, region_evenness_ (with
+    * \a pitch_of, each usable point's pitch). */
   void
-  chooseMinHoleSize (std::vector<float> &evenness_of);
+  chooseMinHoleSize (const std::vector<float> &evenness_of, const std::vector<float> &pitch_of);
+
+  /** The min hole size (pitches) around usable point \a local, where the
+    * sampling pitch is \a pitch: the one for the evenness of the sampling
+    * around it (the whole cloud's where too few points were measured). */
+  float
+  minHoleSizeAround (int local, float pitch) const;
 
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
-    * size touches; the others border gaps of the sampling. Stray points
+    * size around them (minHoleSizeAround) touches; the others border gaps of the sampling. Stray points
     * (detail::isStrayPoint: off the surface, their gap is their own) go too.
     * Sets the kept points' walk_normal from the same neighbours. */
   void
@@ -396,6 +405,7 @@ private:
   float mean_pitch_ = 0.f;
   float sampling_evenness_ = 0.f;
   float min_hole_size_used_ = 0.f;
+  detail::RegionEvenness region_evenness_;  //!< when no min hole size is set
   std::size_t stray_count_ = 0;
   std::size_t turned_normal_count_ = 0;
 };

@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <pcl_holefill/detail/point_grid.h>
+
 #include <Eigen/Core>
 
 #include <cstddef>
@@ -61,4 +63,47 @@ lowerQuartileOfPositive (std::vector<float> &values);
   * from kEvenEvenness, linear in between. */
 float
 minHoleSizeForEvenness (float evenness);
+
+/** \brief A region's evenness is measured within this many of its own
+  * pitches: about 56 points are measured within 12 pitches (one in
+  * kEvennessStride of some 450), and their lower quartile moves by about 0.03
+  * between draws of one sampling (the thresholds are 0.1 apart, the
+  * samplers' evenness 0.3).*/
+constexpr float kRegionEvennessRadius = 12.f;
+
+/** \brief Fewer measured points than this within the radius (a small
+  * cloud, a narrow part) leave the region's evenness unknown: the whole
+  * cloud's is used. */
+constexpr int kMinRegionEvennessSamples = 16;
+
+/** \brief How evenly the cloud is sampled around a place: the lower quartile
+  * of the evenness measured within kRegionEvennessRadius pitches of it, each
+  * measured point weighted by the area it stands for (its pitch squared).
+  *
+  * Why per region: merged scans and partly thinned clouds are sampled evenly
+  * in one part and randomly in another. A min hole size chosen from the whole
+  * cloud's evenness (4 pitches where most of it is even) reported the random
+  * part's gaps (up to about 5 pitches) as holes. Why weighted by area: beside
+  * a part 4 times denser, the measured points are mostly the dense part's,
+  * and a count would judge the sparse part's rim by its neighbour. */
+class RegionEvenness
+{
+public:
+  /** \brief Keeps the positive \a evenness_of[s], measured at
+    * \a positions[s * \a stride] whose pitch is \a pitch_of[s * \a stride]. */
+  void
+  build (const std::vector<Eigen::Vector3f> &positions, const std::vector<float> &pitch_of,
+         const std::vector<float> &evenness_of, std::size_t stride, int threads);
+
+  /** \brief The evenness around \a position, where the sampling pitch is
+    * \a pitch; 0 when fewer than kMinRegionEvennessSamples were measured
+    * there. */
+  float
+  around (const Eigen::Vector3f &position, float pitch) const;
+
+private:
+  PointGrid grid_;
+  std::vector<float> values_;  //!< the evenness of the grid's point i
+  std::vector<float> areas_;   //!< the area it stands for (its pitch squared)
+};
 }  // namespace pcl_holefill::detail

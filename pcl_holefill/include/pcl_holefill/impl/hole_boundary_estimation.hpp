@@ -525,21 +525,28 @@ HoleBoundaryEstimation<PointT>::findRimPoints (std::vector<float> &pitch_of)
   }
   mean_spacing_ = static_cast<float> (sum / static_cast<double> (n));
   mean_pitch_ = static_cast<float> (pitch_sum / static_cast<double> (n));
-  chooseMinHoleSize (evenness_of);
+  chooseMinHoleSize (evenness_of, pitch_of);
   turnNormalsOver (found);
   return mergeRimCandidates (found);
 }
 
 template <typename PointT> void
-HoleBoundaryEstimation<PointT>::chooseMinHoleSize (std::vector<float> &evenness_of)
+HoleBoundaryEstimation<PointT>::chooseMinHoleSize (const std::vector<float> &evenness_of, const std::vector<float> &pitch_of)
 {
   // A hole must be wider than the gaps the sampling leaves by chance, and
   // how wide those get depends on the sampler: a 6-pitch hole in one face of
   // a fin (the other face's hole seen through it), clear on Poisson-disk or
   // voxel-grid samples, was left open because random samples need 6.
-  sampling_evenness_ = detail::lowerQuartileOfPositive (evenness_of);
+  std::vector<float> values = evenness_of;
+  sampling_evenness_ = detail::lowerQuartileOfPositive (values);
   min_hole_size_used_ =
       min_hole_pitches_ > 0.f ? min_hole_pitches_ : detail::minHoleSizeForEvenness (sampling_evenness_);
+  // The regions' evenness can only raise the size (keepHoleSizedGaps).
+  if (min_hole_pitches_ > 0.f || min_hole_diameter_ > 0.f || min_hole_size_used_ >= detail::kRandomSamplingMinHoleSize)
+    region_evenness_.build (positions_, pitch_of, {}, detail::kEvennessStride, 1);
+  else
+    region_evenness_.build (positions_, pitch_of, evenness_of, detail::kEvennessStride,
+                            detail::resolveThreadCount (threads_));
   if (min_hole_diameter_ > 0.f)
     PCL_DEBUG ("[pcl_holefill::%s::compute] Sampling evenness %.2f: min hole diameter %g (set).\n",
                getClassName ().c_str (), sampling_evenness_, min_hole_diameter_);
@@ -548,6 +555,16 @@ HoleBoundaryEstimation<PointT>::chooseMinHoleSize (std::vector<float> &evenness_
                "pitches%s.\n",
                getClassName ().c_str (), sampling_evenness_, min_hole_size_used_,
                min_hole_pitches_ > 0.f ? " (set)" : "");
+}
+
+template <typename PointT> float
+HoleBoundaryEstimation<PointT>::minHoleSizeAround (int local, float pitch) const
+{
+  // A cloud can be sampled evenly in one part and randomly in another
+  // (merged scans, a part thinned): the random part's gaps need the random
+  // sampling's size even where most of the cloud is even.
+  const float evenness = region_evenness_.around (positions_[static_cast<std::size_t> (local)], pitch);
+  return evenness > 0.f ? detail::minHoleSizeForEvenness (evenness) : min_hole_size_used_;
 }
 
 template <typename PointT> bool
@@ -770,8 +787,28 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
       pitch += pitch_of[j];
     pitch /= static_cast<float> (ids.size () + 1);
     rim_points[r].pitch = pitch;
-    const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_size_used_ * pitch;
-    keep[r] = emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch, rim_points[r].on_thin_part) ? 1 : 0;
+    const auto disc_touches = [&] (float size) {
+      const float diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : size * pitch;
+      return emptyDiscTouches (local, rim_points[r].gap, ids, diameter, pitch, rim_points[r].on_thin_part);
+    };
+    // The region's evenness is looked up only where the cloud's size finds
+    // a gap (a few of the candidates), and only raises the size: a part
+    // sampled randomly needs more than the even rest. (Lowering it in an
+    // even part of a random cloud would test a second disc at every
+    // candidate: two thirds of them on random samples.)
+    float size = min_hole_size_used_;
+    bool touches = disc_touches (size);
+    if (touches && min_hole_pitches_ <= 0.f && min_hole_diameter_ <= 0.f)
+    {
+      const float around = minHoleSizeAround (local, pitch);
+      if (around > size)
+      {
+        size = around;
+        touches = disc_touches (size);
+      }
+    }
+    rim_points[r].min_hole_size = size;
+    keep[r] = touches ? 1 : 0;
     if (keep[r])
       rim_points[r].walk_normal = tracingNormal (local, ids);
   }
@@ -791,13 +828,14 @@ HoleBoundaryEstimation<PointT>::finishLoop (const detail::TracedLoop &traced, co
   loop.closed = traced.closed;
   pcl::Indices coarse;
   std::vector<Eigen::Vector3f> loop_positions, loop_gaps;
-  float pitch = 0.f;
+  float pitch = 0.f, min_size = 0.f;
   for (const int m : traced.members)
   {
     coarse.push_back ((*usable_)[rim[m].local]);
     loop_positions.push_back (positions_[rim[m].local]);
     loop_gaps.push_back (rim[m].gap.direction);
     pitch += pitch_of[rim[m].local];
+    min_size += rim[m].min_hole_size;
   }
   loop.indices = detail::refineByMidpoints (
       coarse, traced.closed, [this] (int i) { return Eigen::Vector3f ((*input_)[i].getVector3fMap ()); },
@@ -805,7 +843,8 @@ HoleBoundaryEstimation<PointT>::finishLoop (const detail::TracedLoop &traced, co
       4 * coarse.size () + 64);
   measure (loop);
   loop.pitch = pitch / static_cast<float> (traced.members.size ());
-  const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_hole_size_used_ * loop.pitch;
+  min_size /= static_cast<float> (traced.members.size ());
+  const float min_diameter = min_hole_diameter_ > 0.f ? min_hole_diameter_ : min_size * loop.pitch;
   loop.is_hole = loop.closed && detail::gapsPointInside (loop_positions, loop_gaps) && loop.diameter >= min_diameter &&
                  (max_hole_diameter_ <= 0.f || loop.diameter <= max_hole_diameter_);
   return loop;

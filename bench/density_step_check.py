@@ -11,7 +11,10 @@ smoothly): 'step x2' and 'step x4', uniformly random samples whose one half
 (split by a plane) is 2 or 4 times sparser than the other; 'overlap', two
 random scans of overlapping parts merged (a band of double density);
 'overlap 0.2p off', the same with the second scan moved 0.2 pitch along
-the normals (a misregistration). Shapes: independent_check's and
+the normals (a misregistration); 'voxel grid thinned' and 'Poisson-disk
+thinned', independent_check's even samplers with the low half thinned to
+1 in 4 at random (a decimated region: even in one part, random in the
+other). Shapes: independent_check's and
 probe_check's; clean with exact normals, clean and 0.3 % noise without.
 
 Usage: density_step_check.py COMMAND [seed] [shape,shape,...]
@@ -39,6 +42,18 @@ def step(shape, n, rng, ratio):
     return dense[keep], normals[keep]
 
 
+EVEN_SAMPLE = ic.sample  # independent_check's samplers, before main() replaces them
+
+
+def thinned(shape, sampler, n, rng):
+    """An even sampler's samples (1.6 n), those on the low side of the median
+    plane kept 1 in 4 at random: about n left."""
+    points, normals = EVEN_SAMPLE(shape, sampler, int(1.6 * n), rng)
+    side = points @ SPLIT
+    keep = np.flatnonzero((side > np.median(side)) | (rng.random(len(points)) < 0.25))
+    return points[keep], normals[keep]
+
+
 def overlap(shape, n, rng, shift):
     """Two random scans, of the parts below the 65th and above the 35th
     percentile along SPLIT; the second moved shift pitches along its normals."""
@@ -56,7 +71,9 @@ def overlap(shape, n, rng, shift):
 
 SAMPLERS = {"step x2": lambda s, n, r: step(s, n, r, 2), "step x4": lambda s, n, r: step(s, n, r, 4),
             "overlap": lambda s, n, r: overlap(s, n, r, 0.0),
-            "overlap 0.2p off": lambda s, n, r: overlap(s, n, r, 0.2)}
+            "overlap 0.2p off": lambda s, n, r: overlap(s, n, r, 0.2),
+            "voxel grid thinned": lambda s, n, r: thinned(s, "voxel grid", n, r),
+            "Poisson-disk thinned": lambda s, n, r: thinned(s, "Poisson-disk", n, r)}
 
 
 def main():

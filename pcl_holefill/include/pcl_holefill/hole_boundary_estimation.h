@@ -115,7 +115,9 @@ public:
     * must hold, in local sampling pitches (sqrt of the surface area per
     * point, measured from the k nearest neighbours): parameters::kMinHoleSize.
     * 0 (default): chosen from how evenly the cloud is sampled, 6 on
-    * uniformly random samples, 4 on even ones (getMinHoleSizeUsed ()).
+    * uniformly random samples, 4 on even ones (getMinHoleSizeUsed ()); a
+    * region sampled more randomly than the whole (a part thinned, one of
+    * merged scans) gets its own, larger size (detail::RegionEvenness).
     * Below 5 the gaps of uniformly random sampling are reported as holes. */
   void
   setMinHoleSize (float pitches) { min_hole_pitches_ = pitches; }
@@ -164,7 +166,8 @@ public:
   getSamplingEvenness () const { return sampling_evenness_; }
 
   /** \brief After compute(): the min hole size applied (pitches): the one
-    * set, or the one chosen from getSamplingEvenness () (detail::minHoleSizeForEvenness);
+    * set, or the one chosen from getSamplingEvenness () (detail::minHoleSizeForEvenness;
+    * the least applied: a region sampled more randomly gets a larger one);
     * not applied when setMinHoleDiameter () gave one in cloud units. */
   float
   getMinHoleSizeUsed () const { return min_hole_size_used_; }

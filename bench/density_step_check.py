@@ -33,11 +33,17 @@ import probe_check as pc  # noqa: E402
 SPLIT = np.array([0.8, 0.5, 0.33])  # the direction across the density step
 
 
+def thin_low_half(points, rng, ratio):
+    """Indices of points: all on the high side of the median plane across
+    SPLIT, 1 in ratio of the others, drawn at random."""
+    side = points @ SPLIT
+    return np.flatnonzero((side > np.median(side)) | (rng.random(len(points)) < 1.0 / ratio))
+
+
 def step(shape, n, rng, ratio):
     """Random samples, those on the low side of the median plane kept 1 in ratio."""
     dense, normals = ic.SHAPES[shape](12 * n, rng)
-    side = dense @ SPLIT
-    keep = np.flatnonzero(rng.random(len(dense)) < np.where(side > np.median(side), 1.0, 1.0 / ratio))
+    keep = thin_low_half(dense, rng, ratio)
     keep = keep[rng.permutation(len(keep))[:n]]
     return dense[keep], normals[keep]
 
@@ -49,8 +55,7 @@ def thinned(shape, sampler, n, rng):
     """An even sampler's samples (1.6 n), those on the low side of the median
     plane kept 1 in 4 at random: about n left."""
     points, normals = EVEN_SAMPLE(shape, sampler, int(1.6 * n), rng)
-    side = points @ SPLIT
-    keep = np.flatnonzero((side > np.median(side)) | (rng.random(len(points)) < 0.25))
+    keep = thin_low_half(points, rng, 4)
     return points[keep], normals[keep]
 
 

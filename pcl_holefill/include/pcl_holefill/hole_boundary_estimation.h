@@ -313,8 +313,9 @@ private:
   minHoleSizeAround (int local, float pitch) const;
 
   /** Stage 1b: keeps the rim points that an empty disc of the minimum hole
-    * size around them (minHoleSizeAround) touches; the others border gaps of the sampling. Stray points
-    * (detail::isStrayPoint: off the surface, their gap is their own) go too.
+    * size around them (minHoleSizeAround) touches; the others border gaps of
+    * the sampling. Stray points (detail::isStrayPoint: off the surface,
+    * their gap is their own) go too.
     * Sets the kept points' walk_normal from the same neighbours. */
   void
   keepHoleSizedGaps (RimCandidates &rim, const std::vector<float> &pitch_of) const;

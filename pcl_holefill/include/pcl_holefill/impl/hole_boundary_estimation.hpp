@@ -541,10 +541,11 @@ HoleBoundaryEstimation<PointT>::chooseMinHoleSize (const std::vector<float> &eve
   sampling_evenness_ = detail::lowerQuartileOfPositive (values);
   min_hole_size_used_ =
       min_hole_pitches_ > 0.f ? min_hole_pitches_ : detail::minHoleSizeForEvenness (sampling_evenness_);
-  // The regions' evenness can only raise the size (keepHoleSizedGaps).
-  if (min_hole_pitches_ > 0.f || min_hole_diameter_ > 0.f || min_hole_size_used_ >= detail::kRandomSamplingMinHoleSize)
-    region_evenness_.build (positions_, pitch_of, {}, detail::kEvennessStride, 1);
-  else
+  // Regions only raise the size (keepHoleSizedGaps): none where the user
+  // set one or the cloud's is already the largest.
+  region_evenness_ = detail::RegionEvenness ();
+  const bool set = min_hole_pitches_ > 0.f || min_hole_diameter_ > 0.f;
+  if (!set && min_hole_size_used_ < detail::kRandomSamplingMinHoleSize)
     region_evenness_.build (positions_, pitch_of, evenness_of, detail::kEvennessStride,
                             detail::resolveThreadCount (threads_));
   if (min_hole_diameter_ > 0.f)
@@ -795,17 +796,15 @@ HoleBoundaryEstimation<PointT>::keepHoleSizedGaps (RimCandidates &rim, const std
     // a gap (a few of the candidates), and only raises the size: a part
     // sampled randomly needs more than the even rest. (Lowering it in an
     // even part of a random cloud would test a second disc at every
-    // candidate: two thirds of them on random samples.)
+    // candidate: two thirds of them on random samples.) With a size set,
+    // region_evenness_ is empty and the cloud's size stands.
     float size = min_hole_size_used_;
     bool touches = disc_touches (size);
-    if (touches && min_hole_pitches_ <= 0.f && min_hole_diameter_ <= 0.f)
+    const float around = touches ? minHoleSizeAround (local, pitch) : size;
+    if (around > size)
     {
-      const float around = minHoleSizeAround (local, pitch);
-      if (around > size)
-      {
-        size = around;
-        touches = disc_touches (size);
-      }
+      size = around;
+      touches = disc_touches (size);
     }
     rim_points[r].min_hole_size = size;
     keep[r] = touches ? 1 : 0;
